@@ -1,0 +1,11 @@
+//! midsurf: mid-surfaces of thin-walled solids by face pairing (Sheen et al., after Rezayat 1996).
+//!
+//! Rust decides (pairing, classification, joints); the OCCT sidecar executes kernel operations.
+
+pub mod cli;
+pub mod error;
+pub mod exit;
+pub mod face_graph;
+pub mod inspect;
+pub mod part;
+pub mod sidecar;

@@ -1,0 +1,72 @@
+//! Loading a part: checks on the input file, then `load_step` and `describe` of every solid in the sidecar.
+
+use std::path::{Path, PathBuf};
+
+use crate::error::Error;
+use crate::face_graph::FaceGraph;
+use crate::sidecar::protocol::{Loaded, Request};
+use crate::sidecar::{Sidecar, SidecarError};
+
+/// One solid of the part: its sidecar handle and its face graph.
+pub struct Solid {
+    pub handle: u64,
+    pub graph: FaceGraph,
+}
+
+pub struct Part {
+    pub path: PathBuf,
+    pub solids: Vec<Solid>,
+}
+
+/// Mesh settings for `describe`: whether to tessellate and the chordal tolerance in mm.
+#[derive(Debug, Clone, Copy)]
+pub struct MeshRequest {
+    pub mesh: bool,
+    pub tolerance: f64,
+}
+
+/// Problems we can see without the kernel, with a message a user can act on.
+pub fn check_input(path: &Path) -> Result<(), Error> {
+    let meta = std::fs::metadata(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => Error::input(path, "no such file"),
+        _ => Error::input(path, format!("cannot read: {e}")),
+    })?;
+    if meta.is_dir() {
+        return Err(Error::input(path, "is a directory, not a STEP file"));
+    }
+    if meta.len() == 0 {
+        return Err(Error::input(path, "is empty, not a STEP file"));
+    }
+    std::fs::File::open(path).map_err(|e| Error::input(path, format!("cannot open: {e}")))?;
+    Ok(())
+}
+
+/// Error codes of `load_step` that are the input's fault, not the kernel's.
+const INPUT_CODES: [&str; 4] = ["not_found", "not_a_file", "read_failed", "no_solid"];
+
+fn classify(path: &Path, error: SidecarError) -> Error {
+    match error.code() {
+        Some(code) if INPUT_CODES.contains(&code) => Error::input(path, error.to_string()),
+        _ => Error::Sidecar { path: path.to_path_buf(), error },
+    }
+}
+
+pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Part, Error> {
+    check_input(path)?;
+    // The sidecar gets an absolute path so that its working directory never matters.
+    let absolute = std::path::absolute(path).map_err(|e| Error::input(path, format!("bad path: {e}")))?;
+    let text = absolute.to_str().ok_or_else(|| Error::input(path, "path is not valid UTF-8"))?;
+    let loaded: Loaded =
+        sidecar.call(&Request::LoadStep { path: text.to_string() }).map_err(|e| classify(path, e))?;
+    let mut solids = Vec::with_capacity(loaded.solids.len());
+    for solid in loaded.solids {
+        let request = Request::Describe { handle: solid.handle, mesh: mesh.mesh, mesh_tolerance: mesh.tolerance };
+        let graph: FaceGraph = sidecar.call(&request).map_err(|e| classify(path, e))?;
+        let problems = graph.validate();
+        if !problems.is_empty() {
+            return Err(Error::input(path, format!("inconsistent face graph: {}", problems.join("; "))));
+        }
+        solids.push(Solid { handle: solid.handle, graph });
+    }
+    Ok(Part { path: path.to_path_buf(), solids })
+}

@@ -1,0 +1,78 @@
+//! The OCCT sidecar: a Python process that executes kernel operations for us (see sidecar/PROTOCOL.md).
+
+pub mod client;
+pub mod process;
+pub mod protocol;
+pub mod python;
+
+use std::fmt;
+use std::time::Duration;
+
+pub use client::{Client, Sidecar};
+
+/// What can go wrong talking to the sidecar. Every variant says which op it concerns.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SidecarError {
+    /// The Python interpreter or the sidecar package could not be found or started.
+    Spawn { why: String },
+    /// The op ran and failed: the sidecar's own error code and message.
+    Op { op: String, code: String, message: String },
+    /// The process ended (crash, segfault, killed) while we waited for `op`.
+    Died { op: String, stderr: String },
+    /// No reply to `op` within its timeout; the process was killed.
+    Timeout { op: String, after: Duration, stderr: String },
+    /// A reply that does not follow the protocol.
+    BadReply { op: String, why: String, line: String },
+}
+
+impl SidecarError {
+    /// The sidecar's error code, when the op itself failed.
+    pub fn code(&self) -> Option<&str> {
+        match self {
+            SidecarError::Op { code, .. } => Some(code),
+            _ => None,
+        }
+    }
+}
+
+/// The last line of the child's stderr that says something, for one-line error messages.
+fn last_words(stderr: &str) -> String {
+    stderr.lines().rev().find(|l| !l.trim().is_empty()).map(|l| format!(" (sidecar stderr: {})", l.trim())).unwrap_or_default()
+}
+
+impl fmt::Display for SidecarError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SidecarError::Spawn { why } => write!(f, "cannot start the OCCT sidecar: {why}"),
+            SidecarError::Op { message, .. } => write!(f, "{message}"),
+            SidecarError::Died { op, stderr } => {
+                write!(f, "the OCCT sidecar died during '{op}'{}", last_words(stderr))
+            }
+            SidecarError::Timeout { op, after, stderr } => write!(
+                f,
+                "the OCCT sidecar did not answer '{op}' within {} s and was stopped{}",
+                after.as_secs(),
+                last_words(stderr)
+            ),
+            SidecarError::BadReply { op, why, line } => {
+                write!(f, "the OCCT sidecar broke the protocol during '{op}': {why}: {line}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for SidecarError {}
+
+/// A line-based, bidirectional channel to a sidecar; the real one is a child process, tests use a fake.
+pub trait Transport {
+    fn send(&mut self, line: &str) -> Result<(), TransportError>;
+    fn recv(&mut self, timeout: Duration) -> Result<String, TransportError>;
+    /// What the other side said on its diagnostic channel (the child's stderr), most recent last.
+    fn diagnostics(&self) -> String;
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TransportError {
+    Closed,
+    Timeout,
+}

@@ -1,0 +1,164 @@
+//! Messages of the sidecar protocol (sidecar/PROTOCOL.md): typed requests, reply decoding.
+
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+use super::SidecarError;
+
+/// Bump together with `PROTOCOL_VERSION` in sidecar/midsurf_sidecar.
+pub const PROTOCOL_VERSION: u32 = 1;
+
+/// A face's attributes in the output STEP.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FaceAttributes {
+    pub face: usize,
+    pub name: String,
+    pub color: [f64; 3],
+    pub thickness: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "op", content = "args", rename_all = "snake_case")]
+pub enum Request {
+    Hello { protocol: u32 },
+    Ping {},
+    LoadStep { path: String },
+    Describe { handle: u64, mesh: bool, mesh_tolerance: f64 },
+    WriteStep { path: String, handle: u64, faces: Vec<FaceAttributes> },
+    Free { handles: Vec<u64> },
+    Shutdown {},
+}
+
+impl Request {
+    pub fn op(&self) -> &'static str {
+        match self {
+            Request::Hello { .. } => "hello",
+            Request::Ping {} => "ping",
+            Request::LoadStep { .. } => "load_step",
+            Request::Describe { .. } => "describe",
+            Request::WriteStep { .. } => "write_step",
+            Request::Free { .. } => "free",
+            Request::Shutdown {} => "shutdown",
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct Envelope<'a> {
+    id: u64,
+    #[serde(flatten)]
+    request: &'a Request,
+}
+
+/// The single line (without newline) that carries `request` with `id`.
+pub fn encode(id: u64, request: &Request) -> String {
+    serde_json::to_string(&Envelope { id, request }).expect("protocol requests always serialise")
+}
+
+/// Decodes a reply line for request `id`: the `ok` payload, or the sidecar's `err` as an error.
+pub fn decode(id: u64, op: &str, line: &str) -> Result<Value, SidecarError> {
+    let bad = |why: String| SidecarError::BadReply { op: op.to_string(), why, line: clip(line) };
+    let mut value: Value = serde_json::from_str(line).map_err(|e| bad(format!("not JSON ({e})")))?;
+    let got = value.get("id").and_then(Value::as_u64);
+    if got != Some(id) {
+        return Err(bad(format!("reply id {got:?} for request {id}")));
+    }
+    if let Some(ok) = value.get_mut("ok") {
+        return Ok(ok.take());
+    }
+    match value.get("err") {
+        Some(err) => Err(SidecarError::Op {
+            op: op.to_string(),
+            code: err.get("code").and_then(Value::as_str).unwrap_or("unknown").to_string(),
+            message: err.get("message").and_then(Value::as_str).unwrap_or("").to_string(),
+        }),
+        None => Err(bad("neither ok nor err".to_string())),
+    }
+}
+
+fn clip(line: &str) -> String {
+    const MAX: usize = 200;
+    match line.char_indices().nth(MAX) {
+        Some((at, _)) => format!("{}...", &line[..at]),
+        None => line.to_string(),
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Hello {
+    pub protocol: u32,
+    pub python: String,
+    pub occt: String,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct LoadedSolid {
+    pub handle: u64,
+    pub faces: usize,
+    pub volume: f64,
+    pub area: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Loaded {
+    pub solids: Vec<LoadedSolid>,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Written {
+    pub path: String,
+    pub bytes: u64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn requests_encode_as_exact_json() {
+        let cases = [
+            (Request::Hello { protocol: 1 }, r#"{"id":0,"op":"hello","args":{"protocol":1}}"#),
+            (Request::Ping {}, r#"{"id":0,"op":"ping","args":{}}"#),
+            (
+                Request::LoadStep { path: "/tmp/a b/ü.step".into() },
+                r#"{"id":0,"op":"load_step","args":{"path":"/tmp/a b/ü.step"}}"#,
+            ),
+            (
+                Request::Describe { handle: 3, mesh: true, mesh_tolerance: 0.1 },
+                r#"{"id":0,"op":"describe","args":{"handle":3,"mesh":true,"mesh_tolerance":0.1}}"#,
+            ),
+            (
+                Request::WriteStep {
+                    path: "o.step".into(),
+                    handle: 7,
+                    faces: vec![FaceAttributes {
+                        face: 0,
+                        name: "patch 1 t=2.000".into(),
+                        color: [1.0, 0.5, 0.0],
+                        thickness: 2.0,
+                    }],
+                },
+                r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[{"face":0,"name":"patch 1 t=2.000","color":[1.0,0.5,0.0],"thickness":2.0}]}}"#,
+            ),
+            (Request::Free { handles: vec![1, 2] }, r#"{"id":0,"op":"free","args":{"handles":[1,2]}}"#),
+            (Request::Shutdown {}, r#"{"id":0,"op":"shutdown","args":{}}"#),
+        ];
+        for (request, json) in cases {
+            assert_eq!(encode(0, &request), json, "{}", request.op());
+        }
+    }
+
+    #[test]
+    fn decode_ok_err_and_garbage() {
+        assert_eq!(decode(4, "ping", r#"{"id":4,"ok":{"pong":true}}"#).unwrap(), serde_json::json!({"pong":true}));
+        let err = decode(4, "load_step", r#"{"id":4,"err":{"code":"no_solid","message":"2 faces, no solid"}}"#)
+            .unwrap_err();
+        assert_eq!(
+            err,
+            SidecarError::Op { op: "load_step".into(), code: "no_solid".into(), message: "2 faces, no solid".into() }
+        );
+        assert!(matches!(decode(4, "ping", "hello world"), Err(SidecarError::BadReply { .. })));
+        assert!(matches!(decode(4, "ping", r#"{"id":5,"ok":{}}"#), Err(SidecarError::BadReply { .. })));
+        assert!(matches!(decode(4, "ping", r#"{"id":4}"#), Err(SidecarError::BadReply { .. })));
+    }
+}
