@@ -10,6 +10,7 @@ use crate::error::Error;
 use crate::exit::Exit;
 use crate::face_graph::FaceGraph;
 use crate::inspect::{self, SolidSummary};
+use crate::pairs_report::{self, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
 use crate::sidecar::Sidecar;
 
@@ -40,11 +41,58 @@ pub enum Command {
         #[arg(long, requires = "json")]
         mesh: bool,
     },
+    /// Find the face pairs of a part: groups of opposite faces (the two skins of each wall) and the role of
+    /// every face, ending with the paired share of the area.
+    ///
+    /// Parallel pairs have opposite normals; draft pairs normals within twice --draft-max of opposite; curved
+    /// pairs share their axis or centre (cylinders, cones, spheres, tori) or keep a nearly constant distance
+    /// (freeform). Every pair is closer than --t-max and its faces overlap when projected onto each other.
+    Pairs {
+        /// The STEP file to read.
+        part: PathBuf,
+        /// Print pairs, groups and roles as JSON instead of the table.
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        pairing: PairingArgs,
+    },
+}
+
+/// Pairing parameters shared by the commands that pair faces.
+#[derive(Debug, Clone, clap::Args)]
+pub struct PairingArgs {
+    /// Largest wall thickness in mm [default: estimated per solid from its parallel walls, see the output].
+    #[arg(long, value_parser = positive_mm)]
+    pub t_max: Option<f64>,
+    /// Largest draft angle of a wall side in degrees; draft pairs differ by up to twice this.
+    #[arg(long, default_value_t = crate::tolerance::DEFAULT_DRAFT_MAX_DEG, value_parser = draft_degrees)]
+    pub draft_max: f64,
+}
+
+impl PairingArgs {
+    pub fn params(&self) -> PairingParams {
+        PairingParams { t_max: self.t_max, draft_max_deg: self.draft_max }
+    }
+}
+
+fn positive_mm(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("'{s}' is not a positive length in mm")),
+    }
+}
+
+fn draft_degrees(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (0.0..45.0).contains(&v) => Ok(v),
+        _ => Err(format!("'{s}' is not an angle in degrees from 0 to 45")),
+    }
 }
 
 pub fn run(cli: Cli) -> Result<Exit, Error> {
     match cli.command {
         Command::Inspect { part, json, mesh } => inspect_command(part, json, mesh),
+        Command::Pairs { part, json, pairing } => pairs_command(part, json, pairing.params()),
     }
 }
 
@@ -68,8 +116,7 @@ struct SolidJson<'a> {
 
 fn inspect_command(path: PathBuf, json: bool, mesh: bool) -> Result<Exit, Error> {
     let mut sidecar = start_sidecar(&path)?;
-    // The mesh tolerance only matters for --mesh; 1/1000 of the part is fine enough to see its shape.
-    let part = part::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: 0.1 })?;
+    let part = part::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: None })?;
     sidecar.shutdown();
     let file = path.display().to_string();
     let text = if json {
@@ -83,6 +130,41 @@ fn inspect_command(path: PathBuf, json: bool, mesh: bool) -> Result<Exit, Error>
         let summaries: Vec<SolidSummary> = part.solids.iter().map(|s| inspect::summarize(&s.graph)).collect();
         inspect::render(&file, &summaries)
     };
-    std::io::stdout().write_all(text.as_bytes()).map_err(|e| Error::output(std::path::Path::new("<stdout>"), e.to_string()))?;
+    print(&text)?;
+    Ok(Exit::Clean)
+}
+
+fn print(text: &str) -> Result<(), Error> {
+    std::io::stdout()
+        .write_all(text.as_bytes())
+        .map_err(|e| Error::output(std::path::Path::new("<stdout>"), e.to_string()))
+}
+
+#[derive(Serialize)]
+struct PairsJson<'a> {
+    file: String,
+    solids: &'a [SolidPairing],
+}
+
+fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exit, Error> {
+    let mut sidecar = start_sidecar(&path)?;
+    let part = part::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
+    sidecar.shutdown();
+    let solids: Vec<SolidPairing> = part
+        .solids
+        .iter()
+        .map(|s| pairs_report::pair_solid(&s.graph, params, &vec![true; s.graph.faces.len()]))
+        .collect();
+    let file = path.display().to_string();
+    let text = if json {
+        serde_json::to_string_pretty(&PairsJson { file, solids: &solids }).expect("pairings always serialise") + "\n"
+    } else {
+        let mut out = format!("{file}: {} solid(s)\n", solids.len());
+        for (i, (solid, sp)) in part.solids.iter().zip(&solids).enumerate() {
+            pairs_report::render(&mut out, i, &solid.graph, sp);
+        }
+        out
+    };
+    print(&text)?;
     Ok(Exit::Clean)
 }

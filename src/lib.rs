@@ -9,3 +9,8 @@ pub mod face_graph;
 pub mod inspect;
 pub mod part;
 pub mod sidecar;
+pub mod geom;
+pub mod pairing;
+pub mod pairs_report;
+pub mod synthetic;
+pub mod tolerance;

@@ -18,11 +18,12 @@ pub struct Part {
     pub solids: Vec<Solid>,
 }
 
-/// Mesh settings for `describe`: whether to tessellate and the chordal tolerance in mm.
+/// Mesh settings for `describe`: whether to tessellate, and the chordal tolerance in mm (None: derived from
+/// each solid's wall estimate, see `tolerance::mesh_tolerance`).
 #[derive(Debug, Clone, Copy)]
 pub struct MeshRequest {
     pub mesh: bool,
-    pub tolerance: f64,
+    pub tolerance: Option<f64>,
 }
 
 /// Problems we can see without the kernel, with a message a user can act on.
@@ -60,7 +61,9 @@ pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Par
         sidecar.call(&Request::LoadStep { path: text.to_string() }).map_err(|e| classify(path, e))?;
     let mut solids = Vec::with_capacity(loaded.solids.len());
     for solid in loaded.solids {
-        let request = Request::Describe { handle: solid.handle, mesh: mesh.mesh, mesh_tolerance: mesh.tolerance };
+        let mesh_tolerance =
+            mesh.tolerance.unwrap_or_else(|| crate::tolerance::mesh_tolerance(solid.volume, solid.area));
+        let request = Request::Describe { handle: solid.handle, mesh: mesh.mesh, mesh_tolerance };
         let graph: FaceGraph = sidecar.call(&request).map_err(|e| classify(path, e))?;
         let problems = graph.validate();
         if !problems.is_empty() {

@@ -1,0 +1,378 @@
+"""Write the STEP fixtures midsurf is tested on, and the bad-input files its CLI tests read.
+
+Usage:
+    .venv/bin/python scripts/make_fixtures.py [OUT_DIR]           # parts, default fixtures/
+    .venv/bin/python scripts/make_fixtures.py --bad-inputs [DIR]  # bad inputs, default tests/data/
+
+Every part is one closed solid in millimetres, placed in the first octant with a corner at the origin. Each
+file is read back with plain OCP (reader status, one solid, face count, BRepCheck validity, volume against
+the hand-computed one) before its line is printed, so a wrong fixture stops the script. The STEP header
+carries a fixed timestamp, so re-running the script reproduces the files byte for byte.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from io import BytesIO
+from pathlib import Path
+
+from build123d import Axis, Edge, Face, Plane, Shape, Solid, Vector, Wire, export_step
+from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepGProp import BRepGProp
+from OCP.GProp import GProp_GProps
+from OCP.IFSelect import IFSelect_ReturnStatus
+from OCP.STEPControl import STEPControl_Reader
+from OCP.TopAbs import TopAbs_FACE, TopAbs_SOLID, TopAbs_ShapeEnum
+from OCP.TopExp import TopExp
+from OCP.TopoDS import TopoDS_Shape
+from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
+
+REPO = Path(__file__).resolve().parent.parent
+DEFAULT_FIXTURE_DIR = REPO / "fixtures"
+DEFAULT_BAD_INPUT_DIR = REPO / "tests" / "data"
+
+# The STEP writer stamps the write time into the FILE_NAME header line; a fixed one keeps the bytes stable.
+FIXED_TIMESTAMP = "2000-01-01T00:00:00"
+
+# BRepGProp integrates planes and cylinders exactly up to rounding, so only rounding is tolerated.
+VOLUME_RELATIVE_TOLERANCE = 1e-9
+
+
+@dataclass(frozen=True)
+class Fixture:
+    """A part and what reading its STEP file back must give."""
+
+    solid: Solid
+    volume: float
+    faces: int
+
+
+def box(x0: float, y0: float, z0: float, dx: float, dy: float, dz: float) -> Solid:
+    """An axis-aligned box with its minimum corner at (x0, y0, z0).
+
+    The geometry is built in place rather than moved: a solid carrying a location is written to STEP as a
+    one-part assembly with a transform, and the fixtures should be plain solids.
+    """
+    return Solid.make_box(dx, dy, dz, Plane(origin=(x0, y0, z0)))
+
+
+def cylinder_z(x: float, y: float, z0: float, radius: float, height: float) -> Solid:
+    """A cylinder on a vertical axis through (x, y), from z0 up by height."""
+    return Solid.make_cylinder(radius, height, Plane(origin=(x, y, z0)))
+
+
+def prism_xz(profile: Wire, length: float) -> Solid:
+    """Extrude a closed profile lying in the XZ plane (y = 0) along +Y by length."""
+    return Solid.extrude(Face(profile), (0, length, 0))
+
+
+def polygon_xz(points: list[tuple[float, float]]) -> Wire:
+    """A closed polygon in the XZ plane from (x, z) corners."""
+    return Wire.make_polygon([Vector(x, 0, z) for x, z in points], close=True)
+
+
+def single_solid(part: Shape) -> Solid:
+    """The one solid of a boolean result; a fixture that falls apart into several is a bug here."""
+    solids = part.solids()
+    if len(solids) != 1:
+        raise RuntimeError(f"expected one solid, the boolean gave {len(solids)}")
+    return solids[0]
+
+
+def flat_plate() -> Fixture:
+    """Plate 100 x 60 x 2 (x, y, z), z from 0 to 2.
+
+    Mid-surface: one planar patch 100 x 60 at z = 1, thickness 2, no joints.
+    Faces: 6. Volume: 100 * 60 * 2 = 12000.
+    """
+    return Fixture(box(0, 0, 0, 100, 60, 2), 100 * 60 * 2, 6)
+
+
+def l_bracket() -> Fixture:
+    """L-bracket, wall 2, width 40 along y, sharp corners.
+
+    Legs 60 long measured on the outside: horizontal leg x 0..60, z 0..2; vertical leg x 0..2, z 0..60.
+    Mid-surface: two planar patches, thickness 2, meeting at the line x = 1, z = 1 (one L-joint):
+    z = 1 for x 1..60 and x = 1 for z 1..60, both 40 wide.
+    Faces: 8 (6 profile sides + 2 ends). Volume: (60 * 2 + 58 * 2) * 40 = 9440.
+    """
+    profile = polygon_xz([(0, 0), (60, 0), (60, 2), (2, 2), (2, 60), (0, 60)])
+    return Fixture(prism_xz(profile, 40), (60 * 2 + 58 * 2) * 40, 8)
+
+
+def t_rib() -> Fixture:
+    """Plate 100 x 60 x 2 with a rib 2 thick x 20 high along the middle of its top, the full 60 long.
+
+    Plate x 0..100, y 0..60, z 0..2; rib x 49..51, y 0..60, z 2..22 (its ends flush with the plate's).
+    Mid-surface: plate patch at z = 1 and rib patch at x = 50 (z 1..22), both thickness 2, one T-joint
+    along the line x = 50, z = 1.
+    Faces: 10 (top split in two, two T-shaped ends, rib sides and top). Volume: 100*60*2 + 2*20*60 = 14400.
+    """
+    part = box(0, 0, 0, 100, 60, 2) + box(49, 0, 2, 2, 60, 20)
+    return Fixture(single_solid(part), 100 * 60 * 2 + 2 * 20 * 60, 10)
+
+
+def u_channel() -> Fixture:
+    """U-channel, wall 2, length 80 along y, sharp corners.
+
+    Base 60 wide (x 0..60, z 0..2), flanges 30 high (x 0..2 and x 58..60, z 0..30), all outside sizes.
+    Mid-surface: base patch at z = 1 (x 1..59), flange patches at x = 1 and x = 59 (z 1..30), all
+    thickness 2, two L-joints (x = 1, z = 1 and x = 59, z = 1).
+    Faces: 10 (8 profile sides + 2 ends). Volume: (60 * 30 - 56 * 28) * 80 = 18560.
+    """
+    profile = polygon_xz([(0, 0), (60, 0), (60, 30), (58, 30), (58, 2), (2, 2), (2, 30), (0, 30)])
+    return Fixture(prism_xz(profile, 80), (60 * 30 - 56 * 28) * 80, 10)
+
+
+def bent_sheet() -> Fixture:
+    """Sheet-metal bend: two flat legs 50 long, width 40 along y, thickness 2, one 90 degree bend.
+
+    Horizontal leg x 0..50, z 0..2; bend about the axis x = 50, z = 5 (parallel to y), outer radius 5,
+    inner radius 3; vertical leg x 53..55, z 5..55. Faces are plane - cylinder - plane on both sides.
+    Mid-surface: one smooth patch, thickness 2: plane z = 1 (x 0..50), cylinder R 4 (quarter), plane
+    x = 54 (z 5..55); no joints (the bend is tangent-continuous).
+    Faces: 10 (4 planes + 2 coaxial cylinders + 2 leg ends + 2 sides).
+    Volume: (2 * 50 * 2 + pi/4 * (5^2 - 3^2)) * 40 = 8000 + 160 pi = 8502.65.
+    """
+    bend_axis = Plane(origin=(50, 0, 5), x_dir=(1, 0, 0), z_dir=(0, -1, 0))  # local y is +z
+
+    def quarter(radius: float) -> Edge:
+        return Edge.make_circle(radius, bend_axis, start_angle=-90, end_angle=0)
+
+    profile = Wire(
+        [
+            Edge.make_line((0, 0, 0), (50, 0, 0)),
+            quarter(5),
+            Edge.make_line((55, 0, 5), (55, 0, 55)),
+            Edge.make_line((55, 0, 55), (53, 0, 55)),
+            Edge.make_line((53, 0, 55), (53, 0, 5)),
+            quarter(3),
+            Edge.make_line((50, 0, 2), (0, 0, 2)),
+            Edge.make_line((0, 0, 2), (0, 0, 0)),
+        ]
+    )
+    return Fixture(prism_xz(profile, 40), (2 * 50 * 2 + math.pi / 4 * (5**2 - 3**2)) * 40, 10)
+
+
+def drafted_rib() -> Fixture:
+    """Plate 100 x 60 x 3 with one tapered rib on top, the full 60 long.
+
+    Plate x 0..100, y 0..60, z 0..3. Rib centred on x = 50, z 3..23, 3 thick at its root, both sides
+    drafted by 1.5 degrees, so the top is 3 - 2 * 20 * tan(1.5 deg) = 1.9526 thick.
+    Mid-surface: plate patch at z = 1.5, thickness 3; rib patch on the draft pair's bisector x = 50
+    (z 1.5..23), thickness tapering from 3 at the root to 1.9526 at the top (mean 2.4763); one T-joint
+    along x = 50, z = 1.5.
+    Faces: 10. Volume: 100 * 60 * 3 + 60 * 20 * (3 - 20 tan(1.5 deg)) = 20971.53.
+    """
+    half_top = 1.5 - 20 * math.tan(math.radians(1.5))
+    rib = prism_xz(polygon_xz([(48.5, 3), (51.5, 3), (50 + half_top, 23), (50 - half_top, 23)]), 60)
+    part = box(0, 0, 0, 100, 60, 3) + rib
+    rib_section = 20 * (3 - 20 * math.tan(math.radians(1.5)))
+    return Fixture(single_solid(part), 100 * 60 * 3 + 60 * rib_section, 10)
+
+
+def plate_features() -> Fixture:
+    """Plate 100 x 60 x 3 with its four vertical edges rounded R 5, a hole and a boss.
+
+    Plate x 0..100, y 0..60, z 0..3; through hole D 6 on the axis (25, 30); cylindrical boss D 10 from
+    z 3 to 8 on the axis (75, 30).
+    Mid-surface: one planar patch at z = 1.5, thickness 3, outline with R 5 corners; the hole and the
+    boss are small features (the hole may stay as an inner loop or be filled; the boss has no pair).
+    Faces: 13 (top, bottom, 4 sides, 4 corner cylinders, hole, boss side, boss top).
+    Volume: 3 * (100 * 60 - (4 - pi) * 5^2 - pi * 3^2) + pi * 5^2 * 5 = 17700 + 173 pi = 18243.50.
+    """
+    block = box(0, 0, 0, 100, 60, 3)
+    plate = block.fillet(5, block.edges().filter_by(Axis.Z))
+    hole = cylinder_z(25, 30, -1, 3, 5)  # longer than the plate so no cap is coplanar with a plate face
+    boss = cylinder_z(75, 30, 3, 5, 5)
+    part = plate - hole + boss
+    area = 100 * 60 - (4 - math.pi) * 5**2 - math.pi * 3**2
+    return Fixture(single_solid(part), 3 * area + math.pi * 5**2 * 5, 13)
+
+
+def open_box_ribs() -> Fixture:
+    """Open box (tray) 80 x 60 x 30, walls and bottom 2, open at the top, with two internal ribs.
+
+    Outside x 0..80, y 0..60, z 0..30; cavity x 2..78, y 2..58, z 2..30. Ribs 2 thick across the width,
+    15 high on the bottom: x 24..26 and x 54..56, y 2..58, z 2..17 (their ends touch the long walls).
+    Mid-surface: bottom patch z = 1, wall patches x = 1, x = 79, y = 1, y = 59, rib patches x = 25 and
+    x = 55 (z 1..17, y 1..59), all thickness 2. Joints: 4 bottom-wall and 4 wall-wall L-joints, 2 rib-bottom
+    T-joints, and each rib end meets a long wall in a T-joint.
+    Faces: 19 (5 outside, 4 inside walls, floor split in 3, rim, 3 per rib).
+    Volume: 80 * 60 * 30 - 76 * 56 * 28 + 2 * (2 * 56 * 15) = 24832 + 3360 = 28192.
+    """
+    tray = box(0, 0, 0, 80, 60, 30) - box(2, 2, 2, 76, 56, 30)  # cavity pokes out of the top: no coplanar cap
+    part = tray + box(24, 2, 2, 2, 56, 15) + box(54, 2, 2, 2, 56, 15)
+    return Fixture(single_solid(part), 80 * 60 * 30 - 76 * 56 * 28 + 2 * (2 * 56 * 15), 19)
+
+
+PARTS: list[Callable[[], Fixture]] = [
+    flat_plate,
+    l_bracket,
+    t_rib,
+    u_channel,
+    bent_sheet,
+    drafted_rib,
+    plate_features,
+    open_box_ribs,
+]
+
+
+def step_bytes(shape: Shape, name: str) -> bytes:
+    """The STEP file of a shape, in mm, named `name` in its header and product, with the fixed timestamp."""
+    shape.label = name
+    buffer = BytesIO()
+    export_step(shape, buffer, timestamp=FIXED_TIMESTAMP)
+    return buffer.getvalue()
+
+
+@dataclass(frozen=True)
+class ReadBack:
+    """What plain OCP finds in a STEP file."""
+
+    root: TopAbs_ShapeEnum
+    solids: int
+    faces: int
+    volume: float
+    valid: bool
+
+
+def read_back(path: Path) -> ReadBack:
+    """Read a STEP file with STEPControl_Reader; a reader status other than RetDone raises."""
+    reader = STEPControl_Reader()
+    status = reader.ReadFile(str(path))
+    if status != IFSelect_ReturnStatus.IFSelect_RetDone:
+        raise RuntimeError(f"{path.name}: STEPControl_Reader.ReadFile gave {status}")
+    reader.TransferRoots()
+    shape = reader.OneShape()
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props)
+    return ReadBack(
+        root=shape.ShapeType(),
+        solids=count(shape, TopAbs_SOLID),
+        faces=count(shape, TopAbs_FACE),
+        volume=props.Mass(),
+        valid=BRepCheck_Analyzer(shape).IsValid(),
+    )
+
+
+def count(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> int:
+    """Distinct sub-shapes of one kind (the way the sidecar numbers them)."""
+    shapes = ShapeMap()
+    TopExp.MapShapes_s(shape, kind, shapes)
+    return shapes.Size()
+
+
+def check_fixture(path: Path, fixture: Fixture) -> ReadBack:
+    """Read a written fixture back and raise on any difference from what the part function promised."""
+    got = read_back(path)
+    problems = []
+    if got.root != TopAbs_SOLID or got.solids != 1:
+        problems.append(f"{got.solids} solids under a {got.root.name}, want one bare solid (no assembly)")
+    if got.faces != fixture.faces:
+        problems.append(f"{got.faces} faces, want {fixture.faces}")
+    if not got.valid:
+        problems.append("BRepCheck_Analyzer says invalid")
+    if not math.isclose(got.volume, fixture.volume, rel_tol=VOLUME_RELATIVE_TOLERANCE):
+        problems.append(f"volume {got.volume:.6f}, want {fixture.volume:.6f}")
+    if problems:
+        raise RuntimeError(f"{path.name}: " + "; ".join(problems))
+    return got
+
+
+def write_fixtures(out_dir: Path) -> None:
+    """Write and check one STEP file per part."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for make in PARTS:
+        fixture = make()
+        path = out_dir / f"{make.__name__}.step"
+        path.write_bytes(step_bytes(fixture.solid, make.__name__))
+        got = check_fixture(path, fixture)
+        print(f"{path.name:<22} faces {got.faces:>3}  volume {got.volume:>10.3f} mm^3")
+
+
+def faces_only_bytes() -> bytes:
+    """A STEP file holding one planar face (100 x 60 at z = 0, centred on the origin) and no solid."""
+    return step_bytes(Face.make_rect(100, 60), "faces_only")
+
+
+def check_faces_only(path: Path) -> None:
+    """faces_only.step must read cleanly and hold exactly one face and no solid."""
+    got = read_back(path)
+    if got.solids != 0 or got.faces != 1:
+        raise RuntimeError(f"{path.name}: {got.solids} solids and {got.faces} faces, want 0 and 1")
+
+
+@contextmanager
+def kernel_chatter_to_stderr() -> Iterator[None]:
+    """Route OCCT's C++ std::cout output (parse errors on bad files) to stderr, so stdout holds our lines."""
+    sys.stdout.flush()
+    saved_stdout = os.dup(1)
+    os.dup2(2, 1)
+    try:
+        yield
+    finally:
+        os.dup2(saved_stdout, 1)
+        os.close(saved_stdout)
+
+
+def check_refused(path: Path) -> None:
+    """A bad input must already fail at STEPControl_Reader.ReadFile, as the sidecar's read_failed expects."""
+    with kernel_chatter_to_stderr():
+        status = STEPControl_Reader().ReadFile(str(path))
+    if status == IFSelect_ReturnStatus.IFSelect_RetDone:
+        raise RuntimeError(f"{path.name}: STEPControl_Reader.ReadFile accepted it")
+
+
+def write_bad_inputs(out_dir: Path) -> None:
+    """Write the files the CLI must refuse with a clear error."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    plate = step_bytes(flat_plate().solid, "flat_plate")
+    files = {
+        "faces_only.step": faces_only_bytes(),
+        "truncated.step": plate[: len(plate) // 2],
+        "not_step.step": b"This is not a STEP file.\nIt is plain text that a CAD reader must refuse.\n",
+        "empty.step": b"",
+    }
+    for name, data in files.items():
+        (out_dir / name).write_bytes(data)
+        print(f"{name:<22} {len(data):>6} bytes")
+    check_faces_only(out_dir / "faces_only.step")
+    for name in ["truncated.step", "not_step.step", "empty.step"]:
+        check_refused(out_dir / name)
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    target = parser.add_mutually_exclusive_group()
+    target.add_argument(
+        "out_dir",
+        nargs="?",
+        type=Path,
+        default=DEFAULT_FIXTURE_DIR,
+        help=f"where the parts go (default: {DEFAULT_FIXTURE_DIR})",
+    )
+    target.add_argument(
+        "--bad-inputs",
+        nargs="?",
+        type=Path,
+        const=DEFAULT_BAD_INPUT_DIR,
+        metavar="DIR",
+        help=f"write the bad-input files instead of the parts (DIR: {DEFAULT_BAD_INPUT_DIR})",
+    )
+    args = parser.parse_args(argv)
+    if args.bad_inputs is not None:
+        write_bad_inputs(args.bad_inputs)
+    else:
+        write_fixtures(args.out_dir)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,185 @@
+//! Face-pair detection (Sheen et al. 5.1, after Rezayat): which faces are the two skins of a wall.
+//!
+//! Candidates come from an R-tree over face boxes inflated by t_max (`candidates`); each candidate is tested
+//! by the criteria of its surface kinds (`criteria`); accepted pairs are grouped one-to-many and every face
+//! gets a role (`groups`). The default t_max is estimated from the part (`estimate`).
+
+pub mod candidates;
+pub mod criteria;
+pub mod estimate;
+pub mod groups;
+pub mod overlap;
+
+use serde::Serialize;
+
+use crate::face_graph::{FaceGraph, FaceId};
+use crate::tolerance::Tolerances;
+
+pub use groups::{FaceRole, PairGroup, Side};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PairKind {
+    Parallel,
+    Draft,
+    Cylindrical,
+    Conical,
+    Spherical,
+    Toroidal,
+    Freeform,
+}
+
+impl PairKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            PairKind::Parallel => "parallel",
+            PairKind::Draft => "draft",
+            PairKind::Cylindrical => "cylindrical",
+            PairKind::Conical => "conical",
+            PairKind::Spherical => "spherical",
+            PairKind::Toroidal => "toroidal",
+            PairKind::Freeform => "freeform",
+        }
+    }
+}
+
+/// Thickness across a pair: mean over the overlap, and its range where it varies (draft, freeform).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Thickness {
+    pub mean: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Thickness {
+    pub fn uniform(t: f64) -> Thickness {
+        Thickness { mean: t, min: t, max: t }
+    }
+}
+
+/// Two faces found to be the opposite skins of one wall.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Pair {
+    /// Sorted face ids.
+    pub faces: [FaceId; 2],
+    pub kind: PairKind,
+    pub thickness: Thickness,
+    /// Area of one face projected onto the other that lies on it.
+    pub overlap_area: f64,
+}
+
+/// Why a candidate did not pair. Variants are ordered by how far the candidate got through the tests, so the
+/// greatest rejection of a face is its most telling one.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "test", rename_all = "snake_case")]
+pub enum Rejection {
+    /// Surface kinds that cannot be the two skins of one wall (a plane and a cylinder...).
+    Incompatible { kinds: [&'static str; 2] },
+    /// Normals neither opposite nor within the draft limit.
+    Angle { degrees: f64, limit_degrees: f64 },
+    /// Curved faces that do not share their axis or centre.
+    NotCoaxial { offset: f64 },
+    /// Both faces have the material on the same side (two shafts, two holes...).
+    SameSense,
+    /// The other face is not behind this one, so no material lies between them.
+    NotFacing,
+    Distance { distance: f64, limit: f64 },
+    Overlap { share: f64, limit: f64 },
+    /// A freeform pair whose distance varies too much to be one wall.
+    Spread { min: f64, max: f64 },
+}
+
+impl Rejection {
+    fn stage(&self) -> u8 {
+        match self {
+            Rejection::Incompatible { .. } => 0,
+            Rejection::Angle { .. } => 1,
+            Rejection::NotCoaxial { .. } => 2,
+            Rejection::SameSense => 3,
+            Rejection::NotFacing => 4,
+            Rejection::Distance { .. } => 5,
+            Rejection::Overlap { .. } => 6,
+            Rejection::Spread { .. } => 7,
+        }
+    }
+
+    pub fn describe(&self) -> String {
+        match self {
+            Rejection::Incompatible { kinds } => format!("{} and {} cannot form a wall", kinds[0], kinds[1]),
+            Rejection::Angle { degrees, limit_degrees } => {
+                format!("normals {degrees:.2} deg from opposite (limit {limit_degrees:.2})")
+            }
+            Rejection::NotCoaxial { offset } => format!("not coaxial/concentric (offset {offset:.4})"),
+            Rejection::SameSense => "material on the same side of both faces".to_string(),
+            Rejection::NotFacing => "faces do not enclose material between them".to_string(),
+            Rejection::Distance { distance, limit } => format!("distance {distance:.4} > t_max {limit:.4}"),
+            Rejection::Overlap { share, limit } => {
+                format!("overlap {:.1}% < {:.1}%", share * 100.0, limit * 100.0)
+            }
+            Rejection::Spread { min, max } => format!("distance varies {min:.4}..{max:.4}"),
+        }
+    }
+}
+
+/// The closest a face came to pairing: its best candidate and why that candidate failed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct NearMiss {
+    pub candidate: FaceId,
+    pub rejection: Rejection,
+}
+
+/// Everything pairing found on one solid.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Pairing {
+    pub pairs: Vec<Pair>,
+    pub groups: Vec<PairGroup>,
+    /// One role per face, indexed by face id.
+    pub roles: Vec<FaceRole>,
+}
+
+impl Pairing {
+    /// Share of the solid's area that lies on paired faces.
+    pub fn paired_area_share(&self, graph: &FaceGraph) -> f64 {
+        let paired: f64 = graph
+            .faces
+            .iter()
+            .filter(|f| matches!(self.roles[f.id], FaceRole::Pair { .. }))
+            .map(|f| f.area)
+            .sum();
+        if graph.area > 0.0 {
+            paired / graph.area
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Finds the face pairs of a solid. `pairable[f]` false leaves face f out (a suppressed feature).
+pub fn detect(graph: &FaceGraph, tol: &Tolerances, pairable: &[bool]) -> Pairing {
+    let mut pairs = Vec::new();
+    let mut near: Vec<Option<NearMiss>> = vec![None; graph.faces.len()];
+    for (a, b) in candidates::candidate_pairs(graph, tol.t_max) {
+        if !pairable[a] || !pairable[b] {
+            continue;
+        }
+        match criteria::test_pair(graph, a, b, tol) {
+            Ok(pair) => pairs.push(pair),
+            Err(rejection) => {
+                for (me, other) in [(a, b), (b, a)] {
+                    let better = match &near[me] {
+                        None => true,
+                        Some(old) => rejection.stage() > old.rejection.stage(),
+                    };
+                    if better {
+                        near[me] = Some(NearMiss { candidate: other, rejection: rejection.clone() });
+                    }
+                }
+            }
+        }
+    }
+    let (groups, roles) = groups::group_and_classify(graph, &pairs, &near, pairable);
+    Pairing { pairs, groups, roles }
+}
+
+#[cfg(test)]
+mod tests;

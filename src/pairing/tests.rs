@@ -1,0 +1,295 @@
+//! Pairing on hand-made face graphs: every test and curved kind, with near misses on each side of a limit.
+
+use glam::DVec3;
+
+use super::*;
+use crate::face_graph::{Convexity, Face};
+use crate::synthetic::{self, cone, cylinder, rect, sphere, torus};
+
+const T_MAX: f64 = 3.0;
+
+fn tol() -> Tolerances {
+    Tolerances::new(200.0, T_MAX, 3.0_f64.to_radians())
+}
+
+fn run(faces: Vec<Face>) -> Pairing {
+    let g = synthetic::graph(faces, &[]);
+    detect(&g, &tol(), &vec![true; g.faces.len()])
+}
+
+fn pair_of(faces: Vec<Face>) -> Result<Pair, Rejection> {
+    let g = synthetic::graph(faces, &[]);
+    criteria::test_pair(&g, 0, 1, &tol())
+}
+
+/// The 60 x 40 top (+z) at height `z` over the bottom (-z) at 0.
+fn slab_faces(z: f64) -> Vec<Face> {
+    vec![
+        rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+        rect(DVec3::Z * z, DVec3::X * 60.0, DVec3::Y * 40.0, DVec3::Z),
+    ]
+}
+
+/// An 8 mm wide top strip tilted about the x axis by `degrees` (its normal turns toward -y), over the bottom.
+fn tilted_top(degrees: f64) -> Vec<Face> {
+    let a = degrees.to_radians();
+    let dv = DVec3::new(0.0, a.cos(), a.sin()) * 8.0;
+    let normal = DVec3::X.cross(dv).normalize();
+    vec![
+        rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+        rect(DVec3::Z * 2.0, DVec3::X * 60.0, dv, normal),
+    ]
+}
+
+#[test]
+fn parallel_pair_with_its_thickness() {
+    let p = pair_of(slab_faces(2.0)).unwrap();
+    assert_eq!(p.kind, PairKind::Parallel);
+    assert!((p.thickness.mean - 2.0).abs() < 1e-9);
+    assert!((p.overlap_area - 2400.0).abs() < 1e-6);
+}
+
+#[test]
+fn parallel_tolerance_edge() {
+    assert_eq!(pair_of(tilted_top(0.45)).unwrap().kind, PairKind::Parallel);
+    assert_eq!(pair_of(tilted_top(0.55)).unwrap().kind, PairKind::Draft);
+}
+
+#[test]
+fn draft_pair_within_twice_the_draft_limit_only() {
+    // draft_max 3 degrees: normals may differ by up to 6 degrees from opposite.
+    let inside = pair_of(tilted_top(5.9)).unwrap();
+    assert_eq!(inside.kind, PairKind::Draft);
+    let outside = pair_of(tilted_top(6.1)).unwrap_err();
+    assert!(matches!(outside, Rejection::Angle { degrees, .. } if (degrees - 6.1).abs() < 1e-6), "{outside:?}");
+}
+
+#[test]
+fn draft_thickness_is_the_mean_over_the_face_with_its_range() {
+    let p = pair_of(tilted_top(2.0)).unwrap();
+    // The strip rises from z=2 at y=0 to 2 + 8 sin(2 deg) = 2.279 at its far edge: the wall's mean is about
+    // 2.14 and its range 2..2.28 (measured across the bisector, so a hair less).
+    let far = 2.0 + 8.0 * 2.0_f64.to_radians().sin();
+    assert!((p.thickness.mean - 0.5 * (2.0 + far)).abs() < 0.01, "{:?}", p.thickness);
+    assert!((p.thickness.min - 2.0).abs() < 0.01 && (p.thickness.max - far).abs() < 0.01, "{:?}", p.thickness);
+}
+
+#[test]
+fn distance_limit() {
+    assert!(pair_of(slab_faces(2.99)).is_ok());
+    let err = pair_of(slab_faces(3.01)).unwrap_err();
+    assert!(matches!(err, Rejection::Distance { distance, .. } if (distance - 3.01).abs() < 1e-9), "{err:?}");
+}
+
+#[test]
+fn faces_with_air_between_them_do_not_pair() {
+    // Two walls of a slot: each outward normal points at the other face.
+    let faces = vec![
+        rect(DVec3::ZERO, DVec3::X * 60.0, DVec3::Y * 40.0, DVec3::Z),
+        rect(DVec3::Z * 2.0, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+    ];
+    assert_eq!(pair_of(faces).unwrap_err(), Rejection::NotFacing);
+}
+
+#[test]
+fn side_by_side_faces_fail_the_overlap_test() {
+    // Paper Fig. 9(c): a step; the lower top and the upper bottom are parallel, facing and close, but beside
+    // each other.
+    let faces = vec![
+        rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 30.0, -DVec3::Z),
+        rect(DVec3::new(31.0, 0.0, 1.0), DVec3::X * 30.0, DVec3::Y * 40.0, DVec3::Z),
+    ];
+    assert!(matches!(pair_of(faces).unwrap_err(), Rejection::Overlap { share, .. } if share == 0.0));
+    // A sliver of overlap (2 of 30 mm) is still too little.
+    let faces = vec![
+        rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 30.0, -DVec3::Z),
+        rect(DVec3::new(28.0, 0.0, 1.0), DVec3::X * 30.0, DVec3::Y * 40.0, DVec3::Z),
+    ];
+    assert!(matches!(pair_of(faces).unwrap_err(), Rejection::Overlap { share, .. } if share > 0.0 && share < 0.1));
+}
+
+#[test]
+fn one_face_pairs_with_twelve() {
+    // A 130 x 10 bottom under twelve 8 x 10 top pieces separated by rib roots.
+    let mut faces = vec![rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 130.0, -DVec3::Z)];
+    for k in 0..12 {
+        let x = 2.0 + 10.0 * k as f64;
+        faces.push(rect(DVec3::new(x, 0.0, 2.0), DVec3::X * 8.0, DVec3::Y * 10.0, DVec3::Z));
+    }
+    let pairing = run(faces);
+    assert_eq!(pairing.pairs.len(), 12);
+    assert_eq!(pairing.groups.len(), 1);
+    let g = &pairing.groups[0];
+    assert_eq!(g.sides[0], vec![0]);
+    assert_eq!(g.sides[1], (1..=12).collect::<Vec<_>>());
+    assert_eq!(g.reference, Side::A, "the bottom (1300) is larger than the pieces (960)");
+    assert!((g.thickness.mean - 2.0).abs() < 1e-9);
+}
+
+#[test]
+fn coaxial_cylinders_of_a_bend() {
+    let c = DVec3::new(0.0, 0.0, 0.0);
+    let span = (0.0, std::f64::consts::FRAC_PI_2);
+    let p = pair_of(vec![cylinder(c, 3.0, span, 40.0, false), cylinder(c, 3.8, span, 40.0, true)]).unwrap();
+    assert_eq!(p.kind, PairKind::Cylindrical);
+    assert!((p.thickness.mean - 0.8).abs() < 1e-12);
+    // Overlap measured at the mean radius 3.4: a quarter turn x 40.
+    let expected = 3.4 * std::f64::consts::FRAC_PI_2 * 40.0;
+    assert!((p.overlap_area - expected).abs() < 0.01 * expected, "{} vs {expected}", p.overlap_area);
+}
+
+#[test]
+fn full_tube_overlaps_across_the_seam() {
+    let span = (-std::f64::consts::PI, std::f64::consts::PI);
+    let p = pair_of(vec![cylinder(DVec3::ZERO, 10.0, span, 5.0, false), cylinder(DVec3::ZERO, 11.0, span, 5.0, true)])
+        .unwrap();
+    let expected = std::f64::consts::TAU * 10.5 * 5.0;
+    assert!((p.overlap_area - expected).abs() < 0.01 * expected);
+}
+
+#[test]
+fn cylinder_near_misses() {
+    let span = (0.0, std::f64::consts::FRAC_PI_2);
+    let off_axis = pair_of(vec![
+        cylinder(DVec3::ZERO, 3.0, span, 40.0, false),
+        cylinder(DVec3::new(0.1, 0.0, 0.0), 3.8, span, 40.0, true),
+    ]);
+    assert!(matches!(off_axis, Err(Rejection::NotCoaxial { .. })), "{off_axis:?}");
+    let same_sense =
+        pair_of(vec![cylinder(DVec3::ZERO, 3.0, span, 40.0, true), cylinder(DVec3::ZERO, 3.8, span, 40.0, true)]);
+    assert_eq!(same_sense, Err(Rejection::SameSense));
+    // A shaft inside a hole: the convex face is inside the concave one, air between them.
+    let shaft_in_hole =
+        pair_of(vec![cylinder(DVec3::ZERO, 3.0, span, 40.0, true), cylinder(DVec3::ZERO, 3.8, span, 40.0, false)]);
+    assert_eq!(shaft_in_hole, Err(Rejection::NotFacing));
+    let apart = pair_of(vec![
+        cylinder(DVec3::ZERO, 3.0, span, 40.0, false),
+        cylinder(DVec3::ZERO, 3.8, (2.0, 3.0), 40.0, true),
+    ]);
+    assert!(matches!(apart, Err(Rejection::Overlap { .. })), "{apart:?}");
+}
+
+#[test]
+fn concentric_spheres() {
+    let theta = (0.0, 1.0);
+    let p = pair_of(vec![sphere(DVec3::ZERO, 20.0, theta, false), sphere(DVec3::ZERO, 21.5, theta, true)]).unwrap();
+    assert_eq!(p.kind, PairKind::Spherical);
+    assert!((p.thickness.mean - 1.5).abs() < 1e-12);
+    let off = pair_of(vec![sphere(DVec3::ZERO, 20.0, theta, false), sphere(DVec3::X, 21.5, theta, true)]);
+    assert!(matches!(off, Err(Rejection::NotCoaxial { .. })));
+}
+
+#[test]
+fn tori_with_shared_axis_and_major_radius() {
+    let p = pair_of(vec![torus(DVec3::ZERO, 30.0, 3.0, false), torus(DVec3::ZERO, 30.0, 5.0, true)]).unwrap();
+    assert_eq!(p.kind, PairKind::Toroidal);
+    assert!((p.thickness.mean - 2.0).abs() < 1e-12);
+    let other_major = pair_of(vec![torus(DVec3::ZERO, 30.0, 3.0, false), torus(DVec3::ZERO, 31.0, 5.0, true)]);
+    assert!(matches!(other_major, Err(Rejection::NotCoaxial { .. })), "{other_major:?}");
+}
+
+#[test]
+fn coaxial_cones_with_the_same_half_angle() {
+    let half = 30.0_f64.to_radians();
+    // The outer cone's apex sits 2 / sin(30) = 4 below the inner one's: the walls are 2 apart.
+    let inner = cone(DVec3::ZERO, half, (10.0, 30.0), false);
+    let outer = cone(DVec3::new(0.0, 0.0, -4.0), half, (12.0, 34.0), true);
+    let p = pair_of(vec![inner, outer]).unwrap();
+    assert_eq!(p.kind, PairKind::Conical);
+    assert!((p.thickness.mean - 2.0).abs() < 0.05, "{:?}", p.thickness);
+}
+
+/// A wavy sheet z = base + 2 sin(x/10) over [0,60]x[0,40]; `outward` up or down.
+fn wavy(base: f64, up: bool) -> Face {
+    crate::synthetic::face(crate::face_graph::Surface::Bspline, 30, |u, v| {
+        let (x, y) = (60.0 * u, 40.0 * v);
+        let z = base + 2.0 * (x / 10.0).sin();
+        let n = DVec3::new(-0.2 * (x / 10.0).cos(), 0.0, 1.0).normalize();
+        (DVec3::new(x, y, z), if up { n } else { -n })
+    })
+}
+
+#[test]
+fn freeform_offset_sheets_pair_at_nearly_constant_distance() {
+    let p = pair_of(vec![wavy(0.0, false), wavy(1.5, true)]).unwrap();
+    assert_eq!(p.kind, PairKind::Freeform);
+    // Vertical offset 1.5 of a sheet sloping up to atan(0.2) = 11.3 deg: normal distance 1.47..1.5.
+    assert!(p.thickness.min > 1.4 && p.thickness.max < 1.55, "{:?}", p.thickness);
+}
+
+#[test]
+fn freeform_with_a_varying_gap_is_not_one_wall() {
+    let flat_top = crate::synthetic::face(crate::face_graph::Surface::Bspline, 30, |u, v| {
+        (DVec3::new(60.0 * u, 40.0 * v, 2.2), DVec3::Z)
+    });
+    let err = pair_of(vec![wavy(0.0, false), flat_top]).unwrap_err();
+    assert!(matches!(err, Rejection::Spread { .. } | Rejection::Overlap { .. }), "{err:?}");
+}
+
+#[test]
+fn plane_and_cylinder_cannot_pair() {
+    let faces = vec![
+        rect(DVec3::ZERO, DVec3::Y * 4.0, DVec3::X * 4.0, -DVec3::Z),
+        cylinder(DVec3::ZERO, 1.0, (0.0, 1.0), 1.0, true),
+    ];
+    assert!(matches!(pair_of(faces), Err(Rejection::Incompatible { .. })));
+}
+
+#[test]
+fn plate_roles_skins_and_thickness_faces() {
+    let g = synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0));
+    let pairing = detect(&g, &tol(), &[true; 6]);
+    assert_eq!(pairing.pairs.len(), 1);
+    assert_eq!(pairing.pairs[0].faces, [4, 5]);
+    for f in 0..4 {
+        assert_eq!(pairing.roles[f], FaceRole::Thickness { group: 0 }, "face {f}");
+    }
+    assert!(matches!(pairing.roles[4], FaceRole::Pair { group: 0, .. }));
+    assert!((pairing.paired_area_share(&g) - 12000.0 / 12640.0).abs() < 1e-9);
+}
+
+#[test]
+fn suppressed_faces_do_not_pair_and_unpaired_faces_say_why() {
+    let g = synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0));
+    let mut pairable = [true; 6];
+    pairable[5] = false;
+    let pairing = detect(&g, &tol(), &pairable);
+    assert!(pairing.pairs.is_empty());
+    assert_eq!(pairing.roles[5], FaceRole::Suppressed);
+    match &pairing.roles[0] {
+        FaceRole::Unpaired { near_miss: Some(NearMiss { rejection: Rejection::Angle { .. }, .. }) } => {}
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn connecting_face_between_two_walls() {
+    // Two slabs side by side joined by a face touching one skin of each.
+    let mut faces = slab_faces(2.0);
+    faces.extend([
+        rect(DVec3::new(100.0, 0.0, 0.0), DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+        rect(DVec3::new(100.0, 0.0, 2.0), DVec3::X * 60.0, DVec3::Y * 40.0, DVec3::Z),
+        rect(DVec3::new(60.0, 0.0, 2.0), DVec3::X * 40.0, DVec3::Y * 40.0, DVec3::Z * 1.0 + DVec3::X * 0.0),
+    ]);
+    let g = synthetic::graph(faces, &[(1, 4, Convexity::Smooth), (3, 4, Convexity::Smooth)]);
+    let pairing = detect(&g, &tol(), &[true; 5]);
+    assert_eq!(pairing.groups.len(), 2);
+    assert_eq!(pairing.roles[4], FaceRole::Connecting { groups: vec![0, 1] });
+}
+
+#[test]
+fn far_faces_are_not_even_candidates() {
+    let mut faces = slab_faces(2.0);
+    faces.push(rect(DVec3::new(500.0, 0.0, 0.0), DVec3::X * 10.0, DVec3::Y * 10.0, DVec3::Z));
+    let g = synthetic::graph(faces, &[]);
+    assert_eq!(candidates::candidate_pairs(&g, T_MAX), vec![(0, 1)]);
+}
+
+#[test]
+fn t_max_estimate_from_the_dominant_wall() {
+    let mut g = synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0));
+    g.area = g.faces.iter().map(|f| f.area).sum();
+    let e = estimate::estimate_t_max(&g, 3.0_f64.to_radians());
+    assert_eq!(e.dominant, Some(2.0));
+    assert!((e.t_max - 3.0).abs() < 1e-9, "{e:?}");
+}

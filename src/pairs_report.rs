@@ -1,0 +1,131 @@
+//! Pairing of every solid of a part with its parameters, and `midsurf pairs`'s table.
+
+use std::fmt::Write;
+
+use serde::Serialize;
+
+use crate::face_graph::FaceGraph;
+use crate::pairing::estimate::{estimate_t_max, TMaxEstimate};
+use crate::pairing::{self, FaceRole, Pairing};
+use crate::tolerance::Tolerances;
+
+/// What the user asked for; None means "estimate from the part".
+#[derive(Debug, Clone, Copy)]
+pub struct PairingParams {
+    pub t_max: Option<f64>,
+    pub draft_max_deg: f64,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct SolidPairing {
+    /// Where t_max came from: "user" or the estimate's method.
+    pub t_max_source: String,
+    pub estimate: TMaxEstimate,
+    pub tolerances: Tolerances,
+    pub pairing: Pairing,
+    /// Share of the solid's area on paired faces.
+    pub paired_share: f64,
+    /// Share of the skins' area (all faces but thickness faces) on paired faces.
+    pub paired_skin_share: f64,
+}
+
+pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -> SolidPairing {
+    let draft_max = params.draft_max_deg.to_radians();
+    let estimate = estimate_t_max(graph, draft_max);
+    let (t_max, t_max_source) = match params.t_max {
+        Some(t) => (t, "user (--t-max)".to_string()),
+        None => (estimate.t_max, format!("estimated: {}", estimate.method)),
+    };
+    let tolerances = Tolerances::new(graph.bbox.diagonal(), t_max, draft_max);
+    let pairing = pairing::detect(graph, &tolerances, pairable);
+    let area_with = |keep: &dyn Fn(&FaceRole) -> bool| -> f64 {
+        graph.faces.iter().filter(|f| keep(&pairing.roles[f.id])).map(|f| f.area).sum()
+    };
+    let paired = area_with(&|r| matches!(r, FaceRole::Pair { .. }));
+    let skins = area_with(&|r| !matches!(r, FaceRole::Thickness { .. }));
+    SolidPairing {
+        t_max_source,
+        estimate,
+        tolerances,
+        paired_share: if graph.area > 0.0 { paired / graph.area } else { 0.0 },
+        paired_skin_share: if skins > 0.0 { paired / skins } else { 0.0 },
+        pairing,
+    }
+}
+
+fn faces_list(ids: &[usize]) -> String {
+    const SHOWN: usize = 8;
+    let mut s: Vec<String> = ids.iter().take(SHOWN).map(|i| i.to_string()).collect();
+    if ids.len() > SHOWN {
+        s.push(format!("... ({} faces)", ids.len()));
+    }
+    s.join(",")
+}
+
+/// The table `midsurf pairs` prints for one solid.
+pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairing) {
+    let p = &sp.pairing;
+    writeln!(
+        out,
+        "solid {}: {} faces; t_max {:.4} mm ({}); draft_max {:.2} deg",
+        index + 1,
+        graph.faces.len(),
+        sp.tolerances.t_max,
+        sp.t_max_source,
+        sp.tolerances.draft_max.to_degrees()
+    )
+    .unwrap();
+    writeln!(out, "  {:>5}  {:<11}  {:>9}  {:>19}  {:>12}  side A / side B (* = reference)", "group", "kind", "t mean", "t range", "overlap mm2")
+        .unwrap();
+    for g in &p.groups {
+        let star = |side: pairing::Side| if g.reference == side { "*" } else { "" };
+        writeln!(
+            out,
+            "  {:>5}  {:<11}  {:>9.4}  {:>9.4}..{:<9.4}  {:>12.2}  {}{} / {}{}{}",
+            g.id,
+            g.kind.name(),
+            g.thickness.mean,
+            g.thickness.min,
+            g.thickness.max,
+            g.overlap_area,
+            star(pairing::Side::A),
+            faces_list(&g.sides[0]),
+            star(pairing::Side::B),
+            faces_list(&g.sides[1]),
+            if g.side_conflicts.is_empty() { String::new() } else { format!("  side conflicts {:?}", g.side_conflicts) }
+        )
+        .unwrap();
+    }
+    let mut counts = [0usize; 5];
+    for role in &p.roles {
+        counts[match role {
+            FaceRole::Pair { .. } => 0,
+            FaceRole::Thickness { .. } => 1,
+            FaceRole::Connecting { .. } => 2,
+            FaceRole::Suppressed => 3,
+            FaceRole::Unpaired { .. } => 4,
+        }] += 1;
+    }
+    writeln!(
+        out,
+        "  roles: pair {}, thickness {}, connecting {}, suppressed {}, unpaired {}",
+        counts[0], counts[1], counts[2], counts[3], counts[4]
+    )
+    .unwrap();
+    for (f, role) in p.roles.iter().enumerate() {
+        let FaceRole::Unpaired { near_miss } = role else { continue };
+        let face = &graph.faces[f];
+        let why = match near_miss {
+            Some(m) => format!("best candidate face {}: {}", m.candidate, m.rejection.describe()),
+            None => "no face within t_max".to_string(),
+        };
+        writeln!(out, "  unpaired face {f} ({}, {:.2} mm2): {why}", face.surface.kind_name(), face.area).unwrap();
+    }
+    writeln!(
+        out,
+        "  paired: {:.1}% of the area, {:.1}% of the skins (all faces but thickness faces)",
+        sp.paired_share * 100.0,
+        sp.paired_skin_share * 100.0
+    )
+    .unwrap();
+}

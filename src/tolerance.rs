@@ -1,0 +1,50 @@
+//! Every tolerance of the pipeline, derived in one place from the part's size and the wall-thickness limit.
+
+use serde::Serialize;
+
+/// Tolerances for one solid. Build with [`Tolerances::new`]; each field says why it has its value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Tolerances {
+    /// Largest wall thickness that still pairs (user value or estimate).
+    pub t_max: f64,
+    /// Largest draft angle of a wall's side (radians): a draft pair's normals differ by up to twice this.
+    pub draft_max: f64,
+    /// Two lengths closer than this are equal: 1e-6 of the part's diagonal, far above STEP's float noise and
+    /// far below any feature.
+    pub point: f64,
+    /// Two directions closer than this (radians) are parallel: exported CAD is exact to ~1e-9, so 0.5 degree
+    /// only absorbs faceted or sloppily modelled parts and stays well below any intentional draft.
+    pub parallel_angle: f64,
+    /// Axes closer than this are the same axis (coaxial cylinders, cones, tori): 1% of the thickness limit.
+    pub coaxial: f64,
+    /// Smallest share of the smaller face that must overlap its partner for a pair (paper's overlap test).
+    /// 10%: a real partner overlaps almost fully; faces beside each other (Fig. 9c) overlap by 0 or a sliver.
+    pub overlap_share: f64,
+    /// A freeform pair's distance may vary by this share of its mean thickness ("nearly constant").
+    pub freeform_spread: f64,
+}
+
+impl Tolerances {
+    pub fn new(diagonal: f64, t_max: f64, draft_max: f64) -> Tolerances {
+        Tolerances {
+            t_max,
+            draft_max,
+            point: diagonal * 1e-6,
+            parallel_angle: 0.5_f64.to_radians(),
+            coaxial: t_max * 0.01,
+            overlap_share: 0.10,
+            freeform_spread: 0.15,
+        }
+    }
+}
+
+/// Default largest draft angle (degrees) when the user gives none: moulded parts rarely exceed 3 degrees.
+pub const DEFAULT_DRAFT_MAX_DEG: f64 = 3.0;
+
+/// Chordal tolerance of the face meshes asked from the sidecar, before any thickness is known: a twentieth of
+/// the 2V/A wall estimate keeps sampled distances within ~5% of the wall (meshes are only used for overlap and
+/// for distances between freeform faces).
+pub fn mesh_tolerance(volume: f64, area: f64) -> f64 {
+    let wall = if area > 0.0 { 2.0 * volume / area } else { 1.0 };
+    (wall * 0.05).max(1e-3)
+}
