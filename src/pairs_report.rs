@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use serde::Serialize;
 
-use crate::face_graph::FaceGraph;
+use crate::face_graph::{FaceGraph, Surface};
 use crate::pairing::estimate::{estimate_t_max, TMaxEstimate};
 use crate::pairing::{self, FaceRole, Pairing};
 use crate::tolerance::Tolerances;
@@ -25,7 +25,8 @@ pub struct SolidPairing {
     pub pairing: Pairing,
     /// Share of the solid's area on paired faces.
     pub paired_share: f64,
-    /// Share of the skins' area (all faces but thickness faces) on paired faces.
+    /// Share of the skins' area on paired faces. Skins are the faces a mid-surface replaces: all faces but
+    /// thickness faces and the rounds (radius <= t_max) that only connect walls.
     pub paired_skin_share: f64,
 }
 
@@ -42,7 +43,16 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -
         graph.faces.iter().filter(|f| keep(&pairing.roles[f.id])).map(|f| f.area).sum()
     };
     let paired = area_with(&|r| matches!(r, FaceRole::Pair { .. }));
-    let skins = area_with(&|r| !matches!(r, FaceRole::Thickness { .. }));
+    let skins: f64 = graph
+        .faces
+        .iter()
+        .filter(|f| match pairing.roles[f.id] {
+            FaceRole::Thickness { .. } => false,
+            FaceRole::Connecting { .. } => !is_small_round(&f.surface, t_max),
+            _ => true,
+        })
+        .map(|f| f.area)
+        .sum();
     SolidPairing {
         t_max_source,
         estimate,
@@ -50,6 +60,15 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -
         paired_share: if graph.area > 0.0 { paired / graph.area } else { 0.0 },
         paired_skin_share: if skins > 0.0 { paired / skins } else { 0.0 },
         pairing,
+    }
+}
+
+/// A fillet or round: a cylinder, torus or sphere whose (minor) radius is within the wall thickness.
+fn is_small_round(surface: &Surface, t_max: f64) -> bool {
+    match *surface {
+        Surface::Cylinder { radius, .. } | Surface::Sphere { radius, .. } => radius <= t_max,
+        Surface::Torus { minor_radius, .. } => minor_radius <= t_max,
+        _ => false,
     }
 }
 
@@ -123,7 +142,7 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
     }
     writeln!(
         out,
-        "  paired: {:.1}% of the area, {:.1}% of the skins (all faces but thickness faces)",
+        "  paired: {:.1}% of the area, {:.1}% of the skins (all faces but thickness faces and connecting rounds)",
         sp.paired_share * 100.0,
         sp.paired_skin_share * 100.0
     )

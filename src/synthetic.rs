@@ -104,6 +104,7 @@ pub fn cone(apex: DVec3, half: f64, s: (f64, f64), convex: bool) -> Face {
 pub fn graph(mut faces: Vec<Face>, adjacent: &[(usize, usize, Convexity)]) -> FaceGraph {
     for (i, f) in faces.iter_mut().enumerate() {
         f.id = i;
+        f.loops.clear();
     }
     let mut edges = Vec::new();
     for (k, &(a, b, convexity)) in adjacent.iter().enumerate() {
