@@ -1,0 +1,29 @@
+"""Entry point: `python -m midsurf_sidecar`, spoken to over stdin/stdout (PROTOCOL.md)."""
+
+import os
+import sys
+from typing import TextIO
+
+
+def protocol_stream() -> TextIO:
+    """A private copy of stdout for protocol lines; fd 1 itself is pointed at stderr.
+
+    OCCT prints to C++ std::cout (fd 1) whenever it likes. This must run before OCP is imported so
+    nothing but protocol lines can reach the real stdout.
+    """
+    protocol_fd = os.dup(1)
+    os.dup2(2, 1)
+    return os.fdopen(protocol_fd, "w", encoding="utf-8", newline="\n")
+
+
+def main() -> int:
+    replies = protocol_stream()
+    from .server import serve
+
+    serve(sys.stdin.buffer, replies)
+    replies.flush()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

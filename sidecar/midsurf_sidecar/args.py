@@ -1,0 +1,60 @@
+"""Typed access to a request's `args`, raising BadArgs with the offending key in the message."""
+
+import math
+from typing import Any
+
+from .errors import BadArgs
+
+
+def require_str(args: dict[str, Any], key: str) -> str:
+    value = args.get(key)
+    if not isinstance(value, str) or not value:
+        raise BadArgs(f"`{key}` must be a non-empty string, got {value!r}")
+    return value
+
+
+def require_int(args: dict[str, Any], key: str, minimum: int = 0) -> int:
+    value = args.get(key)
+    # bool is an int subclass in Python; `true` is not a valid id.
+    if not isinstance(value, int) or isinstance(value, bool) or value < minimum:
+        raise BadArgs(f"`{key}` must be an integer >= {minimum}, got {value!r}")
+    return value
+
+
+def require_handle(args: dict[str, Any], key: str = "handle") -> int:
+    return require_int(args, key, minimum=1)
+
+
+def optional_bool(args: dict[str, Any], key: str, default: bool) -> bool:
+    value = args.get(key, default)
+    if not isinstance(value, bool):
+        raise BadArgs(f"`{key}` must be true or false, got {value!r}")
+    return value
+
+
+def as_number(value: Any, what: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise BadArgs(f"{what} must be a finite number, got {value!r}")
+    return float(value)
+
+
+def require_positive(args: dict[str, Any], key: str) -> float:
+    value = as_number(args.get(key), f"`{key}`")
+    if value <= 0:
+        raise BadArgs(f"`{key}` must be > 0, got {value!r}")
+    return value
+
+
+def require_list(args: dict[str, Any], key: str) -> list[Any]:
+    value = args.get(key)
+    if not isinstance(value, list):
+        raise BadArgs(f"`{key}` must be a list, got {value!r}")
+    return value
+
+
+def handle_list(args: dict[str, Any], key: str = "handles") -> list[int]:
+    values = require_list(args, key)
+    for value in values:
+        if not isinstance(value, int) or isinstance(value, bool) or value < 1:
+            raise BadArgs(f"`{key}` must hold positive integers, got {value!r}")
+    return values

@@ -1,0 +1,87 @@
+"""The ops available after the handshake: each takes the handle store and the request's args and
+returns the `ok` payload (see PROTOCOL.md). Importing this module imports OCP."""
+
+from collections.abc import Callable
+from typing import Any
+
+import OCP
+from OCP.TopAbs import TopAbs_FACE
+
+from . import face_graph, step_io
+from .args import (
+    as_number,
+    handle_list,
+    optional_bool,
+    require_handle,
+    require_int,
+    require_list,
+    require_positive,
+    require_str,
+)
+from .errors import BadArgs
+from .handles import HandleStore
+from .topology import indexed_map, surface_props, volume
+
+Op = Callable[[HandleStore, dict[str, Any]], dict[str, Any]]
+
+
+def occt_version() -> str:
+    # OCP versions are the OCCT version plus one build number (8.0.1.1 wraps OCCT 8.0.1).
+    return ".".join(OCP.__version__.split(".")[:3])
+
+
+def ping(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    return {"pong": True}
+
+
+def load_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    solids = step_io.load_step(require_str(args, "path"))
+    measured = [(s, indexed_map(s, TopAbs_FACE).Size(), volume(s), surface_props(s).Mass()) for s in solids]
+    # Handles only once everything is measured, so a failure leaves no orphan handles behind.
+    solids_json = [{"handle": store.put(s), "faces": n, "volume": v, "area": a} for s, n, v, a in measured]
+    return {"solids": solids_json}
+
+
+def describe(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    shape = store.get(require_handle(args))
+    mesh_tolerance = require_positive(args, "mesh_tolerance") if optional_bool(args, "mesh", False) else None
+    return face_graph.describe(shape, mesh_tolerance)
+
+
+def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    path = require_str(args, "path")
+    shape = store.get(require_handle(args))
+    faces = [_face_attributes(entry) for entry in require_list(args, "faces")]
+    return {"path": path, "bytes": step_io.write_step(path, shape, faces)}
+
+
+def _face_attributes(entry: Any) -> step_io.FaceAttributes:
+    if not isinstance(entry, dict):
+        raise BadArgs(f"each of `faces` must be an object, got {entry!r}")
+    name = entry.get("name")
+    if name is not None and not isinstance(name, str):
+        raise BadArgs(f"face name must be a string, got {name!r}")
+    color = entry.get("color")
+    if color is not None:
+        if not isinstance(color, list) or len(color) != 3:
+            raise BadArgs(f"face color must be [r, g, b], got {color!r}")
+        color = tuple(as_number(c, "a color component") for c in color)
+        if not all(0.0 <= c <= 1.0 for c in color):
+            raise BadArgs(f"color components must be within 0..1, got {list(color)}")
+    thickness = entry.get("thickness")
+    if thickness is not None:
+        thickness = as_number(thickness, "face thickness")
+    return step_io.FaceAttributes(require_int(entry, "face"), name, color, thickness)
+
+
+def free(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    return {"freed": store.free(handle_list(args))}
+
+
+OPS: dict[str, Op] = {
+    "ping": ping,
+    "load_step": load_step,
+    "describe": describe,
+    "write_step": write_step,
+    "free": free,
+}

@@ -1,0 +1,102 @@
+"""The request loop: one NDJSON request in, one NDJSON reply out, in order, until shutdown or end of input.
+
+OCP is imported by the `hello` op, not here, so that a Python without OCP can still answer `ocp_missing`.
+"""
+
+import json
+import platform
+import sys
+import traceback
+from typing import Any, BinaryIO, TextIO
+
+from .args import require_int
+from .errors import BadArgs, OpError, one_line
+from .handles import HandleStore
+
+PROTOCOL_VERSION = 1
+
+
+class Session:
+    """State across requests: the handshake outcome and the handle store."""
+
+    def __init__(self) -> None:
+        self.store = HandleStore()
+        self.ops: dict[str, Any] | None = None
+        self.finished = False
+
+    def respond(self, line: bytes) -> dict[str, Any]:
+        """The reply to one request line; never raises for a bad request or a failing op."""
+        try:
+            request = json.loads(line)
+        except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+            return _err(None, BadArgs(f"request is not a JSON object on one line: {one_line(exc)}"))
+        request_id = request.get("id") if isinstance(request, dict) else None
+        if not isinstance(request_id, int) or isinstance(request_id, bool) or request_id < 0:
+            return _err(None, BadArgs(f'request needs an unsigned integer "id": {line[:200]!r}'))
+        try:
+            return {"id": request_id, "ok": self._run(request)}
+        except OpError as exc:
+            return _err(request_id, exc)
+        except Exception as exc:
+            # OCCT's exceptions (Standard_Failure...) and anything unforeseen: keep serving.
+            traceback.print_exc(file=sys.stderr)
+            return _err(request_id, OpError(f"{request.get('op')}: {one_line(exc)}"))
+
+    def _run(self, request: dict[str, Any]) -> dict[str, Any]:
+        op = request.get("op")
+        if not isinstance(op, str):
+            raise BadArgs(f'"op" must be a string, got {op!r}')
+        args = request.get("args", {})
+        if not isinstance(args, dict):
+            raise BadArgs(f'"args" must be an object, got {args!r}')
+        if op == "hello":
+            return self._hello(args)
+        if op == "shutdown":
+            # Honoured even before the handshake: a process asked to quit should quit.
+            self.finished = True
+            return {"bye": True}
+        if self.ops is None:
+            raise OpError(f"{op!r} before hello: the first request must be hello", "no_handshake")
+        if op not in self.ops:
+            raise OpError(f"unknown op {op!r}; known: hello, shutdown, {', '.join(self.ops)}", "unknown_op")
+        return self.ops[op](self.store, args)
+
+    def _hello(self, args: dict[str, Any]) -> dict[str, Any]:
+        version = require_int(args, "protocol")
+        if version != PROTOCOL_VERSION:
+            raise OpError(
+                f"midsurf speaks protocol {version}, this sidecar speaks {PROTOCOL_VERSION}: "
+                "run scripts/setup to install matching versions",
+                "protocol_mismatch",
+            )
+        try:
+            from . import ops
+        except ImportError as exc:
+            raise OpError(f"cannot import OCP ({one_line(exc)}); run scripts/setup", "ocp_missing") from exc
+        self.ops = ops.OPS
+        return {"protocol": PROTOCOL_VERSION, "python": platform.python_version(), "occt": ops.occt_version()}
+
+
+def _err(request_id: int | None, exc: OpError) -> dict[str, Any]:
+    return {"id": request_id, "err": {"code": exc.code, "message": one_line(exc)}}
+
+
+def encode(reply: dict[str, Any]) -> str:
+    """One protocol line. NaN/inf are not JSON: a reply holding one becomes a kernel_error."""
+    try:
+        return json.dumps(reply, separators=(",", ":"), allow_nan=False)
+    except ValueError:
+        message = "the result holds a NaN or infinite number (degenerate geometry?)"
+        return json.dumps(_err(reply.get("id"), OpError(message)), separators=(",", ":"))
+
+
+def serve(requests: BinaryIO, replies: TextIO) -> None:
+    """Answers requests until `shutdown` or end of input."""
+    session = Session()
+    for line in iter(requests.readline, b""):
+        if not line.strip():
+            continue
+        replies.write(encode(session.respond(line)) + "\n")
+        replies.flush()
+        if session.finished:
+            return

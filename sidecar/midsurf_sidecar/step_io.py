@@ -1,0 +1,144 @@
+"""STEP import (solids as handles) and XCAF export (per-face names, colours, thickness)."""
+
+import os
+from dataclasses import dataclass
+
+from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
+from OCP.BRep import BRep_Tool
+from OCP.IFSelect import IFSelect_RetDone
+from OCP.Interface import Interface_Static
+from OCP.Quantity import Quantity_Color, Quantity_TOC_sRGB
+from OCP.STEPCAFControl import STEPCAFControl_Controller, STEPCAFControl_Writer
+from OCP.STEPControl import STEPControl_AsIs, STEPControl_Reader
+from OCP.TCollection import TCollection_ExtendedString, TCollection_HAsciiString
+from OCP.TDataStd import TDataStd_Name, TDataStd_NamedData
+from OCP.TDocStd import TDocStd_Document
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID, TopAbs_VERTEX
+from OCP.TopoDS import TopoDS_Shape
+from OCP.XCAFApp import XCAFApp_Application
+from OCP.XCAFDoc import XCAFDoc_ColorSurf, XCAFDoc_DocumentTool
+
+from .errors import BadArgs, OpError
+from .topology import indexed_map
+
+FIXED_TIME_STAMP = "1970-01-01T00:00:00"
+
+
+@dataclass(frozen=True)
+class FaceAttributes:
+    """What write_step attaches to one face (index into MapShapes(shape, FACE))."""
+
+    face: int
+    name: str | None
+    color: tuple[float, float, float] | None
+    thickness: float | None
+
+
+def load_step(path: str) -> list[TopoDS_Shape]:
+    """Solids of the STEP file at `path`, in TopExp order; OpError with the protocol code otherwise."""
+    if not os.path.exists(path):
+        raise OpError(f"no such file: {path}", "not_found")
+    if not os.path.isfile(path):
+        kind = "a directory" if os.path.isdir(path) else "not a regular file"
+        raise OpError(f"{path} is {kind}; pass the path of a .step file", "not_a_file")
+    if not os.access(path, os.R_OK):
+        raise OpError(f"cannot read {path}: permission denied", "read_failed")
+
+    reader = STEPControl_Reader()
+    status = reader.ReadFile(path)
+    # After a failed ReadFile the reader's model is unusable: even NbRootsForTransfer segfaults.
+    if status != IFSelect_RetDone:
+        empty = " (the file is empty)" if os.path.getsize(path) == 0 else ""
+        raise OpError(
+            f"STEP reader returned {status.name} for {path}{empty}; "
+            "check that it is a complete STEP (ISO 10303-21) file",
+            "read_failed",
+        )
+    reader.TransferRoots()
+    shape = reader.OneShape()
+    if reader.NbShapes() == 0 or shape.IsNull():
+        raise OpError(f"{path} holds no transferable shape, no solid", "no_solid")
+
+    solids = indexed_map(shape, TopAbs_SOLID)
+    if solids.Size() == 0:
+        raise OpError(f"{path} has {_content_summary(shape)}, no solid", "no_solid")
+    return [solids.FindKey(i) for i in range(1, solids.Size() + 1)]
+
+
+def _content_summary(shape: TopoDS_Shape) -> str:
+    """What a solid-less shape holds, e.g. "3 faces, 1 open shell"."""
+    shells = indexed_map(shape, TopAbs_SHELL)
+    closed = sum(1 for i in range(1, shells.Size() + 1) if BRep_Tool.IsClosed_s(shells.FindKey(i)))
+    faces = indexed_map(shape, TopAbs_FACE).Size()
+    counts = [(faces, "face"), (shells.Size() - closed, "open shell"), (closed, "closed shell")]
+    if faces == 0:
+        # A wireframe: say what little it holds.
+        counts += [
+            (indexed_map(shape, TopAbs_EDGE).Size(), "edge"),
+            (indexed_map(shape, TopAbs_VERTEX).Size(), "vertex"),
+        ]
+    return ", ".join(_count(n, noun) for n, noun in counts if n > 0) or "nothing"
+
+
+def _count(n: int, noun: str) -> str:
+    plural = "vertices" if noun == "vertex" else noun + "s"
+    return f"{n} {noun if n == 1 else plural}"
+
+
+def write_step(path: str, shape: TopoDS_Shape, faces: list[FaceAttributes]) -> int:
+    """Writes `shape` with XCAF attributes to exactly `path`; returns the file size in bytes."""
+    directory = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(directory):
+        raise OpError(f"cannot write {path}: directory {directory} does not exist", "write_failed")
+
+    STEPCAFControl_Controller.Init_s()
+    # Without this the writer drops the names of sub-shape (face) labels.
+    Interface_Static.SetIVal_s("write.stepcaf.subshapes.name", 1)
+    doc = TDocStd_Document(TCollection_ExtendedString("MDTV-XCAF"))
+    XCAFApp_Application.GetApplication_s().InitDocument(doc)
+    _attach_attributes(doc, shape, faces)
+
+    writer = STEPCAFControl_Writer()
+    writer.SetNameMode(True)
+    writer.SetColorMode(True)
+    writer.SetMetadataMode(True)
+    if not writer.Transfer(doc, STEPControl_AsIs):
+        raise OpError(f"STEPCAFControl_Writer could not transfer the shape for {path}", "write_failed")
+    # The header's FILE_NAME carries the time of writing: fixed, so equal requests give equal bytes.
+    APIHeaderSection_MakeHeader(writer.ChangeWriter().Model()).SetTimeStamp(
+        TCollection_HAsciiString(FIXED_TIME_STAMP)
+    )
+    status = writer.Write(path)
+    if status != IFSelect_RetDone or not os.path.isfile(path):
+        raise OpError(f"STEP writer returned {status.name} for {path}", "write_failed")
+    return os.path.getsize(path)
+
+
+def _attach_attributes(doc: TDocStd_Document, shape: TopoDS_Shape, faces: list[FaceAttributes]) -> None:
+    shape_tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+    color_tool = XCAFDoc_DocumentTool.ColorTool_s(doc.Main())
+    root = shape_tool.AddShape(shape, False)
+    face_map = indexed_map(shape, TopAbs_FACE)
+    for attrs in faces:
+        if not 0 <= attrs.face < face_map.Size():
+            raise BadArgs(f"face {attrs.face} out of range: the shape has {face_map.Size()} faces")
+        label = shape_tool.AddSubShape(root, face_map.FindKey(attrs.face + 1))
+        if label.IsNull():
+            raise OpError(f"XCAF refused face {attrs.face} as a sub-shape of the shape", "write_failed")
+        if attrs.name is not None:
+            TDataStd_Name.Set_s(label, TCollection_ExtendedString(attrs.name))
+        if attrs.color is not None:
+            # sRGB so that the numbers given are the numbers written in COLOUR_RGB.
+            color_tool.SetColor(label, Quantity_Color(*attrs.color, Quantity_TOC_sRGB), XCAFDoc_ColorSurf)
+        if attrs.thickness is not None:
+            # The STEP writer exports named data only for labels that become products (it needs a
+            # shape definition representation), so a face label's data would be dropped: keep the
+            # thickness on the shape's own label, one real per face.
+            TDataStd_NamedData.Set_s(root).SetReal(
+                TCollection_ExtendedString(thickness_key(attrs.face)), attrs.thickness
+            )
+
+
+def thickness_key(face: int) -> str:
+    """Named-data key of a face's thickness on the written shape's label (and in the STEP file)."""
+    return f"thickness face {face}"
