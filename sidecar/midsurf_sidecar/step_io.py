@@ -37,12 +37,12 @@ class FaceAttributes:
 def load_step(path: str) -> list[TopoDS_Shape]:
     """Solids of the STEP file at `path`, in TopExp order; OpError with the protocol code otherwise."""
     if not os.path.exists(path):
-        raise OpError(f"no such file: {path}", "not_found")
+        raise OpError("no such file", "not_found")
     if not os.path.isfile(path):
         kind = "a directory" if os.path.isdir(path) else "not a regular file"
-        raise OpError(f"{path} is {kind}; pass the path of a .step file", "not_a_file")
+        raise OpError(f"is {kind}; pass the path of a .step file", "not_a_file")
     if not os.access(path, os.R_OK):
-        raise OpError(f"cannot read {path}: permission denied", "read_failed")
+        raise OpError("cannot read: permission denied", "read_failed")
 
     reader = STEPControl_Reader()
     status = reader.ReadFile(path)
@@ -50,18 +50,18 @@ def load_step(path: str) -> list[TopoDS_Shape]:
     if status != IFSelect_RetDone:
         empty = " (the file is empty)" if os.path.getsize(path) == 0 else ""
         raise OpError(
-            f"STEP reader returned {status.name} for {path}{empty}; "
+            f"not a readable STEP file{empty} (reader status {status.name}); "
             "check that it is a complete STEP (ISO 10303-21) file",
             "read_failed",
         )
     reader.TransferRoots()
     shape = reader.OneShape()
     if reader.NbShapes() == 0 or shape.IsNull():
-        raise OpError(f"{path} holds no transferable shape, no solid", "no_solid")
+        raise OpError("holds no transferable shape, no solid", "no_solid")
 
     solids = indexed_map(shape, TopAbs_SOLID)
     if solids.Size() == 0:
-        raise OpError(f"{path} has {_content_summary(shape)}, no solid", "no_solid")
+        raise OpError(f"has {_content_summary(shape)}, no solid", "no_solid")
     return [solids.FindKey(i) for i in range(1, solids.Size() + 1)]
 
 
