@@ -47,6 +47,12 @@ pub enum Command {
     /// Parallel pairs have opposite normals; draft pairs normals within twice --draft-max of opposite; curved
     /// pairs share their axis or centre (cylinders, cones, spheres, tori) or keep a nearly constant distance
     /// (freeform). Every pair is closer than --t-max and its faces overlap when projected onto each other.
+    /// Make the mid-surface of a part: pair faces, make a mid-patch per pair group (offset of the larger side
+    /// by half the thickness, or projection onto the bisector of a draft pair), trim the branches where patches
+    /// cross, and write the patches as shells whose faces are named "patch <id> t=<thickness>".
+    ///
+    /// Exit code 1 when the report has warnings (unpaired faces, failed patches, no pairs at all).
+    Run(RunCli),
     Pairs {
         /// The STEP file to read.
         part: PathBuf,
@@ -56,6 +62,24 @@ pub enum Command {
         #[command(flatten)]
         pairing: PairingArgs,
     },
+}
+
+/// Arguments of `midsurf run`.
+#[derive(Debug, clap::Args)]
+pub struct RunCli {
+    /// The STEP file to read (never modified).
+    pub part: PathBuf,
+    /// Where to write the mid-surface STEP (written atomically: a temporary file renamed into place).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Where to write the JSON report (fields in README.md, "Report").
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Leave the time per stage out of the report, so that two runs give byte-identical reports.
+    #[arg(long)]
+    pub no_timings: bool,
+    #[command(flatten)]
+    pub pairing: PairingArgs,
 }
 
 /// Pairing parameters shared by the commands that pair faces.
@@ -93,6 +117,13 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
     match cli.command {
         Command::Inspect { part, json, mesh } => inspect_command(part, json, mesh),
         Command::Pairs { part, json, pairing } => pairs_command(part, json, pairing.params()),
+        Command::Run(r) => crate::run::run(&crate::run::RunArgs {
+            input: r.part,
+            output: r.output,
+            report: r.report,
+            params: r.pairing.params(),
+            timings: !r.no_timings,
+        }),
     }
 }
 

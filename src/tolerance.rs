@@ -20,6 +20,9 @@ pub struct Tolerances {
     /// Smallest share of the smaller face that must overlap its partner for a pair (paper's overlap test).
     /// 10%: a real partner overlaps almost fully; faces beside each other (Fig. 9c) overlap by 0 or a sliver.
     pub overlap_share: f64,
+    /// Fuzzy value for splitting patches where they cross: geometry closer than 1e-4 of the thickness limit is
+    /// one, which absorbs offsetting round-off without merging anything a shell mesh could see.
+    pub fuse: f64,
     /// A freeform pair's distance may vary by this share of its mean thickness ("nearly constant").
     pub freeform_spread: f64,
 }
@@ -34,6 +37,7 @@ impl Tolerances {
             coaxial: t_max * 0.01,
             overlap_share: 0.10,
             freeform_spread: 0.15,
+            fuse: t_max * 1e-4,
         }
     }
 }

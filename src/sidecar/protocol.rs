@@ -17,6 +17,14 @@ pub struct FaceAttributes {
     pub thickness: f64,
 }
 
+/// Where a mid-patch goes: its faces offset along their outward normals, or projected onto a plane.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Placement {
+    Offset(f64),
+    Plane { origin: [f64; 3], normal: [f64; 3] },
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "op", content = "args", rename_all = "snake_case")]
 pub enum Request {
@@ -24,6 +32,9 @@ pub enum Request {
     Ping {},
     LoadStep { path: String },
     Describe { handle: u64, mesh: bool, mesh_tolerance: f64 },
+    MakePatch { handle: u64, faces: Vec<usize>, #[serde(flatten)] placement: Placement },
+    Fuse { patches: Vec<u64>, fuzzy: f64 },
+    MakeShells { handle: u64, shells: Vec<Vec<usize>> },
     WriteStep { path: String, handle: u64, faces: Vec<FaceAttributes> },
     Free { handles: Vec<u64> },
     Shutdown {},
@@ -36,6 +47,9 @@ impl Request {
             Request::Ping {} => "ping",
             Request::LoadStep { .. } => "load_step",
             Request::Describe { .. } => "describe",
+            Request::MakePatch { .. } => "make_patch",
+            Request::Fuse { .. } => "fuse",
+            Request::MakeShells { .. } => "make_shells",
             Request::WriteStep { .. } => "write_step",
             Request::Free { .. } => "free",
             Request::Shutdown {} => "shutdown",
@@ -110,6 +124,50 @@ pub struct Written {
     pub bytes: u64,
 }
 
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct PatchFace {
+    pub source: usize,
+    pub area: f64,
+    pub centroid: glam::DVec3,
+    pub normal: glam::DVec3,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct MadePatch {
+    pub handle: u64,
+    pub faces: Vec<PatchFace>,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct FusedFace {
+    pub patch: usize,
+    pub area: f64,
+    pub centroid: glam::DVec3,
+    pub normal: glam::DVec3,
+    pub edges: Vec<usize>,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct FusedEdge {
+    pub length: f64,
+    pub faces: Vec<usize>,
+    pub points: Vec<glam::DVec3>,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Fused {
+    pub handle: u64,
+    pub faces: Vec<FusedFace>,
+    pub edges: Vec<FusedEdge>,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Shells {
+    pub handle: u64,
+    pub faces: Vec<usize>,
+    pub valid: bool,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -139,6 +197,26 @@ mod tests {
                     }],
                 },
                 r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[{"face":0,"name":"patch 1 t=2.000","color":[1.0,0.5,0.0],"thickness":2.0}]}}"#,
+            ),
+            (
+                Request::MakePatch { handle: 2, faces: vec![4, 5], placement: Placement::Offset(-1.0) },
+                r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[4,5],"offset":-1.0}}"#,
+            ),
+            (
+                Request::MakePatch {
+                    handle: 2,
+                    faces: vec![7],
+                    placement: Placement::Plane { origin: [50.0, 0.0, 0.0], normal: [1.0, 0.0, 0.0] },
+                },
+                r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[7],"plane":{"origin":[50.0,0.0,0.0],"normal":[1.0,0.0,0.0]}}}"#,
+            ),
+            (
+                Request::Fuse { patches: vec![3, 4], fuzzy: 0.001 },
+                r#"{"id":0,"op":"fuse","args":{"patches":[3,4],"fuzzy":0.001}}"#,
+            ),
+            (
+                Request::MakeShells { handle: 9, shells: vec![vec![0, 1], vec![2]] },
+                r#"{"id":0,"op":"make_shells","args":{"handle":9,"shells":[[0,1],[2]]}}"#,
             ),
             (Request::Free { handles: vec![1, 2] }, r#"{"id":0,"op":"free","args":{"handles":[1,2]}}"#),
             (Request::Shutdown {}, r#"{"id":0,"op":"shutdown","args":{}}"#),

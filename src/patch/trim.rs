@@ -1,0 +1,174 @@
+//! Trimming (Sheen et al. 5.3): after the patches are split where they cross, drop the small branches.
+//!
+//! Offsetting the larger face of each wall makes neighbouring patches run past each other: at an L corner
+//! each patch overshoots the other by half the other's thickness. A piece of a split patch is such a branch
+//! when it touches another patch (a crossing line), is not the largest piece of its patch, and every point
+//! of its boundary lies within 0.75 x the crossing patch's thickness of the crossing lines (the overshoot is
+//! half a thickness; the margin absorbs tilted walls).
+
+use glam::DVec3;
+use serde::Serialize;
+
+use crate::sidecar::protocol::Fused;
+
+/// Overshoot allowance over the crossing patch's thickness (nominal overshoot 0.5).
+const BRANCH_WIDTH: f64 = 0.75;
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Branch {
+    /// Index of the piece in the fused shape.
+    pub piece: usize,
+    pub patch: usize,
+    pub area: f64,
+    /// Farthest distance of the piece's boundary from the crossing lines.
+    pub width: f64,
+    /// Patches it crosses, sorted.
+    pub crossing: Vec<usize>,
+}
+
+fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 { ((p - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    p.distance(a + ab * t)
+}
+
+fn distance_to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
+    line.windows(2).map(|w| distance_to_segment(p, w[0], w[1])).fold(f64::INFINITY, f64::min)
+}
+
+/// The branches to drop; `thickness[k]` is the thickness of patch k.
+pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
+    let mut largest: Vec<Option<(f64, usize)>> = vec![None; thickness.len()];
+    for (i, f) in fused.faces.iter().enumerate() {
+        if largest[f.patch].is_none_or(|(a, _)| f.area > a) {
+            largest[f.patch] = Some((f.area, i));
+        }
+    }
+    let mut branches = Vec::new();
+    for (i, face) in fused.faces.iter().enumerate() {
+        if largest[face.patch].map(|(_, j)| j) == Some(i) {
+            continue;
+        }
+        let mut crossing: Vec<usize> = Vec::new();
+        let mut lines: Vec<&[DVec3]> = Vec::new();
+        for &e in &face.edges {
+            let edge = &fused.edges[e];
+            let others: Vec<usize> =
+                edge.faces.iter().map(|&g| fused.faces[g].patch).filter(|&p| p != face.patch).collect();
+            if !others.is_empty() {
+                crossing.extend(others);
+                lines.push(&edge.points);
+            }
+        }
+        if crossing.is_empty() {
+            continue;
+        }
+        crossing.sort_unstable();
+        crossing.dedup();
+        let limit = BRANCH_WIDTH * crossing.iter().map(|&p| thickness[p]).fold(0.0, f64::max);
+        let width = face
+            .edges
+            .iter()
+            .flat_map(|&e| fused.edges[e].points.iter())
+            .map(|&p| lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min))
+            .fold(0.0, f64::max);
+        if width <= limit {
+            branches.push(Branch { piece: i, patch: face.patch, area: face.area, width, crossing });
+        }
+    }
+    branches
+}
+
+/// Groups the kept pieces into connected sets (through edges shared by two kept pieces), each sorted, in
+/// order of their lowest piece: one shell each.
+pub fn connected_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
+    let n = fused.faces.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(parent: &mut [usize], mut x: usize) -> usize {
+        while parent[x] != x {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        x
+    }
+    for edge in &fused.edges {
+        let kept: Vec<usize> = edge.faces.iter().copied().filter(|&f| keep[f]).collect();
+        for w in kept.windows(2) {
+            let (a, b) = (find(&mut parent, w[0]), find(&mut parent, w[1]));
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    let mut sets: Vec<Vec<usize>> = Vec::new();
+    let mut set_of_root: Vec<Option<usize>> = vec![None; n];
+    for f in (0..n).filter(|&f| keep[f]) {
+        let root = find(&mut parent, f);
+        match set_of_root[root] {
+            Some(s) => sets[s].push(f),
+            None => {
+                set_of_root[root] = Some(sets.len());
+                sets.push(vec![f]);
+            }
+        }
+    }
+    sets
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sidecar::protocol::{FusedEdge, FusedFace};
+
+    fn face(patch: usize, area: f64, edges: Vec<usize>) -> FusedFace {
+        FusedFace { patch, area, centroid: DVec3::ZERO, normal: DVec3::Z, edges }
+    }
+
+    fn edge(faces: Vec<usize>, a: DVec3, b: DVec3) -> FusedEdge {
+        FusedEdge { length: a.distance(b), faces, points: (0..5).map(|k| a.lerp(b, k as f64 / 4.0)).collect() }
+    }
+
+    /// An L corner in the x-z section, 40 deep in y: the bottom patch (z = 1, x 0..60) crossed by the wall
+    /// patch (x = 1, z 0..40). Each is split at the crossing line (x = 1, z = 1) into a main piece and a
+    /// branch of width 1.
+    fn l_corner() -> Fused {
+        let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+        let crossing = edge(vec![0, 1, 2, 3], v(1.0, 0.0, 1.0), v(1.0, 40.0, 1.0));
+        let mut edges = vec![crossing];
+        // Free edges of each piece (outline only; enough for the widths).
+        let outline = [
+            (0, v(60.0, 0.0, 1.0), v(60.0, 40.0, 1.0)),
+            (1, v(0.0, 0.0, 1.0), v(0.0, 40.0, 1.0)),
+            (2, v(1.0, 0.0, 40.0), v(1.0, 40.0, 40.0)),
+            (3, v(1.0, 0.0, 0.0), v(1.0, 40.0, 0.0)),
+        ];
+        for (f, a, b) in outline {
+            edges.push(edge(vec![f], a, b));
+        }
+        Fused {
+            handle: 1,
+            faces: vec![face(0, 2360.0, vec![0, 1]), face(0, 40.0, vec![0, 2]), face(1, 1560.0, vec![0, 3]), face(1, 40.0, vec![0, 4])],
+            edges,
+        }
+    }
+
+    #[test]
+    fn l_corner_loses_both_overshoots() {
+        let branches = find_branches(&l_corner(), &[2.0, 2.0]);
+        let pieces: Vec<usize> = branches.iter().map(|b| b.piece).collect();
+        assert_eq!(pieces, vec![1, 3]);
+        assert!((branches[0].width - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_wide_piece_is_not_a_branch() {
+        // With thin crossing walls (t = 1.2) the 1 mm overshoot exceeds 0.75 x 1.2 = 0.9: kept.
+        assert!(find_branches(&l_corner(), &[1.2, 1.2]).is_empty());
+    }
+
+    #[test]
+    fn kept_pieces_group_into_shells() {
+        let fused = l_corner();
+        assert_eq!(connected_sets(&fused, &[true, false, true, false]), vec![vec![0, 2]]);
+        assert_eq!(connected_sets(&fused, &[true, false, false, true]), vec![vec![0, 3]]);
+    }
+}

@@ -1,0 +1,175 @@
+//! The JSON report of `midsurf run` (fields documented in README.md, "Report").
+
+use serde::Serialize;
+
+use crate::face_graph::FaceId;
+use crate::pairing::estimate::TMaxEstimate;
+use crate::pairing::{PairGroup, PairKind, Thickness};
+use crate::patch::trim::Branch;
+use crate::tolerance::Tolerances;
+
+/// Bumped when a field changes meaning or disappears.
+pub const REPORT_VERSION: u32 = 1;
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    pub report_version: u32,
+    pub midsurf_version: &'static str,
+    pub input: String,
+    pub output: String,
+    pub parameters: Parameters,
+    pub solids: Vec<SolidReport>,
+    pub patches: Vec<PatchReport>,
+    pub trimmed: Vec<TrimmedReport>,
+    pub thickness_legend: Vec<LegendEntry>,
+    pub result: ResultSummary,
+    pub warnings: Vec<Warning>,
+    /// Seconds per stage; absent with --no-timings (for byte-identical reports).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub timings_s: Option<Timings>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Parameters {
+    /// The user's --t-max, or null when estimated per solid (see solids[].t_max).
+    pub t_max: Option<f64>,
+    pub draft_max_deg: f64,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct SolidReport {
+    /// 1-based, in the order of the STEP file.
+    pub solid: usize,
+    pub faces: usize,
+    pub volume: f64,
+    pub area: f64,
+    pub t_max: f64,
+    pub t_max_source: String,
+    pub t_max_estimate: TMaxEstimate,
+    pub tolerances: Tolerances,
+    pub groups: Vec<PairGroup>,
+    pub roles: RoleCounts,
+    pub unpaired: Vec<Unpaired>,
+    pub paired_share: f64,
+    pub paired_skin_share: f64,
+}
+
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct RoleCounts {
+    pub pair: usize,
+    pub thickness: usize,
+    pub connecting: usize,
+    pub suppressed: usize,
+    pub unpaired: usize,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Unpaired {
+    pub face: FaceId,
+    pub surface: &'static str,
+    pub area: f64,
+    pub reason: String,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct PatchReport {
+    /// 1-based; the output STEP names its faces "patch <id> t=<thickness>".
+    pub id: usize,
+    pub solid: usize,
+    pub group: usize,
+    pub kind: PairKind,
+    pub source_faces: Vec<FaceId>,
+    pub thickness: Thickness,
+    /// Area after trimming (sum of its faces in the output).
+    pub area: f64,
+    /// Faces of the patch in the output.
+    pub faces: usize,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct TrimmedReport {
+    pub patch: usize,
+    pub area: f64,
+    pub width: f64,
+    pub crossing_patches: Vec<usize>,
+}
+
+impl TrimmedReport {
+    /// From a branch found on the fused pieces; patch indices become 1-based patch ids.
+    pub fn from_branch(b: &Branch) -> TrimmedReport {
+        TrimmedReport {
+            patch: b.patch + 1,
+            area: b.area,
+            width: b.width,
+            crossing_patches: b.crossing.iter().map(|p| p + 1).collect(),
+        }
+    }
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct LegendEntry {
+    pub thickness: f64,
+    pub color: [f64; 3],
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct ResultSummary {
+    pub faces: usize,
+    pub shells: usize,
+    pub valid: bool,
+    pub area: f64,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Warning {
+    /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict, thickness_step.
+    pub code: &'static str,
+    pub message: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solid: Option<usize>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub faces: Vec<FaceId>,
+}
+
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Timings {
+    pub load: f64,
+    pub pairing: f64,
+    pub patches: f64,
+    pub trim: f64,
+    pub write: f64,
+    pub total: f64,
+}
+
+/// Colours for thickness bands, thinnest first: blue, cyan, green, yellow, orange, red, magenta, then grey.
+const PALETTE: [[f64; 3]; 7] = [
+    [0.12, 0.35, 0.85],
+    [0.10, 0.70, 0.80],
+    [0.20, 0.70, 0.25],
+    [0.90, 0.85, 0.15],
+    [0.95, 0.55, 0.10],
+    [0.85, 0.15, 0.15],
+    [0.75, 0.20, 0.75],
+];
+
+/// One band per distinct thickness (to 0.001 mm), thinnest first.
+pub fn legend(thicknesses: &[f64]) -> Vec<LegendEntry> {
+    let mut bands: Vec<f64> = thicknesses.iter().map(|t| round(*t, 3)).collect();
+    bands.sort_by(f64::total_cmp);
+    bands.dedup();
+    bands
+        .into_iter()
+        .enumerate()
+        .map(|(i, thickness)| LegendEntry { thickness, color: PALETTE.get(i).copied().unwrap_or([0.5, 0.5, 0.5]) })
+        .collect()
+}
+
+pub fn band_color(legend: &[LegendEntry], t: f64) -> [f64; 3] {
+    let t = round(t, 3);
+    legend.iter().find(|e| e.thickness == t).map(|e| e.color).unwrap_or([0.5, 0.5, 0.5])
+}
+
+pub fn round(x: f64, digits: i32) -> f64 {
+    let k = 10f64.powi(digits);
+    (x * k).round() / k
+}

@@ -1,0 +1,243 @@
+//! `midsurf run`: STEP solid in, mid-surface STEP (a shell per connected set of patches) and report out.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use crate::error::Error;
+use crate::exit::Exit;
+use crate::face_graph::FaceGraph;
+use crate::pairing::FaceRole;
+use crate::pairs_report::{pair_solid, PairingParams, SolidPairing};
+use crate::part::{self, MeshRequest};
+use crate::patch::plan::{plan_patches, PatchPlan};
+use crate::patch::trim::{connected_sets, find_branches};
+use crate::report::{self, *};
+use crate::sidecar::protocol::{FaceAttributes, Fused, MadePatch, Request, Shells, Written};
+
+pub struct RunArgs {
+    pub input: PathBuf,
+    pub output: PathBuf,
+    pub report: Option<PathBuf>,
+    pub params: PairingParams,
+    pub timings: bool,
+}
+
+/// A patch made in the sidecar, with what it came from.
+struct Made {
+    solid: usize,
+    plan: PatchPlan,
+    handle: u64,
+}
+
+pub fn run(args: &RunArgs) -> Result<Exit, Error> {
+    let started = Instant::now();
+    let mut timings = Timings::default();
+    let step_out = crate::output::Pending::new(&args.output, &args.input)?;
+    let report_out = args.report.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
+    let mut sidecar = crate::cli::start_sidecar(&args.input)?;
+    let kernel = |e| Error::Sidecar { path: args.input.clone(), error: e };
+
+    let t = Instant::now();
+    let part = part::load(&mut sidecar, &args.input, MeshRequest { mesh: true, tolerance: None })?;
+    timings.load = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let pairings: Vec<SolidPairing> = part
+        .solids
+        .iter()
+        .map(|s| pair_solid(&s.graph, args.params, &vec![true; s.graph.faces.len()]))
+        .collect();
+    timings.pairing = t.elapsed().as_secs_f64();
+
+    let mut warnings = Vec::new();
+    let t = Instant::now();
+    let mut made: Vec<Made> = Vec::new();
+    for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
+        warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
+        for plan in plan_patches(&solid.graph, &sp.pairing) {
+            let request = Request::MakePatch { handle: solid.handle, faces: plan.faces.clone(), placement: plan.placement.clone() };
+            match sidecar.call::<MadePatch>(&request) {
+                Ok(patch) => made.push(Made { solid: i + 1, plan, handle: patch.handle }),
+                Err(e) if e.code().is_some() => warnings.push(Warning {
+                    code: "patch_failed",
+                    message: format!("group {} faces {:?}: {e}", plan.group, plan.faces),
+                    solid: Some(i + 1),
+                    faces: plan.faces.clone(),
+                }),
+                Err(e) => return Err(kernel(e)),
+            }
+        }
+    }
+    timings.patches = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let fuzzy = pairings.iter().map(|p| p.tolerances.fuse).fold(f64::INFINITY, f64::min);
+    let fused: Fused = sidecar
+        .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy: if fuzzy.is_finite() { fuzzy } else { 0.0 } })
+        .map_err(kernel)?;
+    let thickness: Vec<f64> = made.iter().map(|m| m.plan.thickness.mean).collect();
+    let branches = find_branches(&fused, &thickness);
+    let mut keep = vec![true; fused.faces.len()];
+    for b in &branches {
+        keep[b.piece] = false;
+    }
+    let sets = connected_sets(&fused, &keep);
+    let shells: Shells = sidecar.call(&Request::MakeShells { handle: fused.handle, shells: sets.clone() }).map_err(kernel)?;
+    timings.trim = t.elapsed().as_secs_f64();
+
+    let legend = report::legend(&thickness);
+    let patches = patch_reports(&made, &fused, &keep);
+    if made.is_empty() {
+        warnings.push(Warning {
+            code: "no_pairs",
+            message: "no face pairs found: the output is empty; check --t-max and --draft-max".to_string(),
+            solid: None,
+            faces: Vec::new(),
+        });
+    }
+
+    let t = Instant::now();
+    let faces: Vec<FaceAttributes> = shells
+        .faces
+        .iter()
+        .enumerate()
+        .map(|(j, &piece)| {
+            let k = fused.faces[piece].patch;
+            let t = made[k].plan.thickness.mean;
+            FaceAttributes { face: j, name: format!("patch {} t={t:.3}", k + 1), color: report::band_color(&legend, t), thickness: t }
+        })
+        .collect();
+    let temp = step_out.temp.to_str().ok_or_else(|| Error::output(&args.output, "path is not valid UTF-8"))?;
+    sidecar
+        .call::<Written>(&Request::WriteStep { path: temp.to_string(), handle: shells.handle, faces })
+        .map_err(kernel)?;
+    sidecar.shutdown();
+    timings.write = t.elapsed().as_secs_f64();
+    timings.total = started.elapsed().as_secs_f64();
+
+    let report = Report {
+        report_version: REPORT_VERSION,
+        midsurf_version: env!("CARGO_PKG_VERSION"),
+        input: args.input.display().to_string(),
+        output: args.output.display().to_string(),
+        parameters: Parameters { t_max: args.params.t_max, draft_max_deg: args.params.draft_max_deg },
+        solids: part.solids.iter().zip(&pairings).enumerate().map(|(i, (s, sp))| solid_report(i + 1, &s.graph, sp)).collect(),
+        patches,
+        trimmed: branches.iter().map(TrimmedReport::from_branch).collect(),
+        thickness_legend: legend,
+        result: ResultSummary {
+            faces: shells.faces.len(),
+            shells: sets.len(),
+            valid: shells.valid,
+            area: shells.faces.iter().map(|&p| fused.faces[p].area).sum(),
+        },
+        warnings,
+        timings_s: args.timings.then_some(timings),
+    };
+    if let Some(pending) = &report_out {
+        pending.write((serde_json::to_string_pretty(&report).expect("reports always serialise") + "\n").as_bytes())?;
+    }
+    step_out.commit()?;
+    if let Some(pending) = report_out {
+        pending.commit()?;
+    }
+    eprintln!("{}", summary_line(&args.output, &report));
+    Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })
+}
+
+fn summary_line(output: &Path, r: &Report) -> String {
+    format!(
+        "midsurf: wrote {} ({} patches, {} faces in {} shell(s), valid: {}); {} warning(s)",
+        output.display(),
+        r.patches.len(),
+        r.result.faces,
+        r.result.shells,
+        r.result.valid,
+        r.warnings.len()
+    )
+}
+
+fn patch_reports(made: &[Made], fused: &Fused, keep: &[bool]) -> Vec<PatchReport> {
+    made.iter()
+        .enumerate()
+        .map(|(k, m)| {
+            let pieces: Vec<&crate::sidecar::protocol::FusedFace> =
+                fused.faces.iter().enumerate().filter(|(i, f)| keep[*i] && f.patch == k).map(|(_, f)| f).collect();
+            PatchReport {
+                id: k + 1,
+                solid: m.solid,
+                group: m.plan.group,
+                kind: m.plan.kind,
+                source_faces: m.plan.faces.clone(),
+                thickness: m.plan.thickness,
+                area: pieces.iter().map(|f| f.area).sum(),
+                faces: pieces.len(),
+            }
+        })
+        .collect()
+}
+
+fn pairing_warnings(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> Vec<Warning> {
+    let mut out = Vec::new();
+    for (f, role) in sp.pairing.roles.iter().enumerate() {
+        if let FaceRole::Unpaired { .. } = role {
+            out.push(Warning {
+                code: "unpaired_face",
+                message: format!("face {f} ({}, {:.3} mm2) has no partner: {}", graph.faces[f].surface.kind_name(), graph.faces[f].area, unpaired_reason(role)),
+                solid: Some(solid),
+                faces: vec![f],
+            });
+        }
+    }
+    for g in &sp.pairing.groups {
+        if !g.side_conflicts.is_empty() {
+            out.push(Warning {
+                code: "side_conflict",
+                message: format!("group {}: faces pair with faces of their own side", g.id),
+                solid: Some(solid),
+                faces: g.side_conflicts.clone(),
+            });
+        }
+    }
+    out
+}
+
+fn unpaired_reason(role: &FaceRole) -> String {
+    match role {
+        FaceRole::Unpaired { near_miss: Some(m) } => format!("best candidate face {}: {}", m.candidate, m.rejection.describe()),
+        _ => "no face within t_max".to_string(),
+    }
+}
+
+fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidReport {
+    let mut roles = RoleCounts::default();
+    let mut unpaired = Vec::new();
+    for (f, role) in sp.pairing.roles.iter().enumerate() {
+        match role {
+            FaceRole::Pair { .. } => roles.pair += 1,
+            FaceRole::Thickness { .. } => roles.thickness += 1,
+            FaceRole::Connecting { .. } => roles.connecting += 1,
+            FaceRole::Suppressed => roles.suppressed += 1,
+            FaceRole::Unpaired { .. } => {
+                roles.unpaired += 1;
+                let face = &graph.faces[f];
+                unpaired.push(Unpaired { face: f, surface: face.surface.kind_name(), area: face.area, reason: unpaired_reason(role) });
+            }
+        }
+    }
+    SolidReport {
+        solid,
+        faces: graph.faces.len(),
+        volume: graph.volume,
+        area: graph.area,
+        t_max: sp.tolerances.t_max,
+        t_max_source: sp.t_max_source.clone(),
+        t_max_estimate: sp.estimate.clone(),
+        tolerances: sp.tolerances,
+        groups: sp.pairing.groups.clone(),
+        roles,
+        unpaired,
+        paired_share: sp.paired_share,
+        paired_skin_share: sp.paired_skin_share,
+    }
+}
