@@ -58,3 +58,58 @@ def handle_list(args: dict[str, Any], key: str = "handles") -> list[int]:
         if not isinstance(value, int) or isinstance(value, bool) or value < 1:
             raise BadArgs(f"`{key}` must hold positive integers, got {value!r}")
     return values
+
+
+def require_number(args: dict[str, Any], key: str) -> float:
+    return as_number(args.get(key), f"`{key}`")
+
+
+def require_non_negative(args: dict[str, Any], key: str) -> float:
+    value = require_number(args, key)
+    if value < 0:
+        raise BadArgs(f"`{key}` must be >= 0, got {value!r}")
+    return value
+
+
+def require_point(args: dict[str, Any], key: str) -> tuple[float, float, float]:
+    value = args.get(key)
+    if not isinstance(value, list) or len(value) != 3:
+        raise BadArgs(f"`{key}` must be [x, y, z], got {value!r}")
+    x, y, z = (as_number(c, f"each component of `{key}`") for c in value)
+    return x, y, z
+
+
+def require_direction(args: dict[str, Any], key: str) -> tuple[float, float, float]:
+    """A non-zero vector, returned normalised."""
+    x, y, z = require_point(args, key)
+    length = math.sqrt(x * x + y * y + z * z)
+    if length < 1e-12:
+        raise BadArgs(f"`{key}` must be a non-zero vector, got {[x, y, z]}")
+    return x / length, y / length, z / length
+
+
+def require_object(args: dict[str, Any], key: str) -> dict[str, Any]:
+    value = args.get(key)
+    if not isinstance(value, dict):
+        raise BadArgs(f"`{key}` must be an object, got {value!r}")
+    return value
+
+
+def index_list(values: Any, count: int, what: str, owner: str) -> list[int]:
+    """`values` as distinct 0-based indices below `count`; the message names the offending index.
+
+    `what` names one index ("face"), `owner` what they index into ("the solid", "the fused shape").
+    """
+    if not isinstance(values, list):
+        raise BadArgs(f"{what} ids must be a list, got {values!r}")
+    seen: set[int] = set()
+    for value in values:
+        if not isinstance(value, int) or isinstance(value, bool):
+            raise BadArgs(f"{what} ids must be integers, got {value!r}")
+        if not 0 <= value < count:
+            valid = f"ids 0..{count - 1}" if count else "none"
+            raise BadArgs(f"{what} {value} out of range: {owner} has {count} {what}s ({valid})")
+        if value in seen:
+            raise BadArgs(f"{what} {value} is listed twice")
+        seen.add(value)
+    return values

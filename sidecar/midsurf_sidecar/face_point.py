@@ -1,26 +1,32 @@
-"""A point inside a face and its outward normal: the UV centre if inside the face, else a mesh point."""
+"""A point inside a face and its outward normal: the UV centre if inside the face, else a mesh point, else a
+point just inside the middle of one of its edges (a sliver or a thin ring, where the other two miss)."""
 
 from collections.abc import Iterator
 
 from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve2d, BRepAdaptor_Surface
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.BRepClass import BRepClass_FaceClassifier
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
-from OCP.gp import gp_Pnt2d
-from OCP.TopAbs import TopAbs_IN
+from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec, gp_Vec2d
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_IN
+from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
 from .errors import KernelError
 from .face_normals import OutwardNormals
-from .vectors import Vec, cross, norm, sub, xyz
+from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 
 # The fallback mesh only has to hold a few triangles well inside the face. Its deflection is a
 # fraction of the face's bounding-box diagonal, so it scales with the face; chords of a coarse
 # mesh cut across concave boundaries, hence each candidate is classified before it is used.
 FALLBACK_DEFLECTION_RATIO = 0.01
 FALLBACK_ANGLE = 0.5
+# Distances from an edge's middle, as fractions of the face's bounding-box diagonal, tried on both sides:
+# a ring 0.5 mm wide on a 100 m disc needs 1e-6.
+BESIDE_EDGE_STEPS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
 
 
 def interior_point(normals: OutwardNormals, diagonal: float) -> tuple[Vec, Vec]:
@@ -31,22 +37,67 @@ def interior_point(normals: OutwardNormals, diagonal: float) -> tuple[Vec, Vec]:
             sample = normals.at(u, v)
             if sample is not None:
                 return sample
-    raise KernelError("no point inside the face: neither the UV centre nor any mesh triangle centre")
+    raise KernelError(
+        "no point inside the face: not the UV centre, nor a mesh triangle centre, nor a point beside an edge"
+    )
 
 
 def _candidates(face: TopoDS_Face, diagonal: float) -> Iterator[tuple[float, float]]:
-    """The UV centre, then (meshing only if it gets that far) mesh triangle centres.
+    """The UV centre, then (meshing only if it gets that far) mesh triangle centres, then points beside
+    the middle of each edge.
 
     A trimmed face (an L, a ring) need not contain its UV centre.
     """
     u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
     yield 0.5 * (u0 + u1), 0.5 * (v0 + v1)
     yield from _triangle_centroids(face, diagonal)
+    yield from _beside_edges(face, diagonal)
 
 
 def _inside(face: TopoDS_Face, u: float, v: float) -> bool:
     classifier = BRepClass_FaceClassifier(face, gp_Pnt2d(u, v), BRep_Tool.Tolerance_s(face))
     return classifier.State() == TopAbs_IN
+
+
+def _beside_edges(face: TopoDS_Face, diagonal: float) -> Iterator[tuple[float, float]]:
+    """UV points on both sides of each edge's middle, ever closer to it (3D distances, so a surface's
+    uneven parametrisation does not matter); the classifier keeps the inside ones."""
+    surface = BRepAdaptor_Surface(face, False)
+    explorer = TopExp_Explorer(face, TopAbs_EDGE)
+    while explorer.More():
+        edge = TopoDS.Edge(explorer.Current())
+        explorer.Next()
+        if BRep_Tool.Degenerated_s(edge):
+            continue
+        curve = BRepAdaptor_Curve2d(edge, face)
+        uv, tangent = gp_Pnt2d(), gp_Vec2d()
+        curve.D1(0.5 * (curve.FirstParameter() + curve.LastParameter()), uv, tangent)
+        side = _uv_across(surface, uv.X(), uv.Y(), tangent.X(), tangent.Y())
+        if side is None:
+            continue
+        for step in BESIDE_EDGE_STEPS:
+            for sign in (1.0, -1.0):
+                offset = sign * step * diagonal
+                yield uv.X() + offset * side[0], uv.Y() + offset * side[1]
+
+
+def _uv_across(
+    surface: BRepAdaptor_Surface, u: float, v: float, du: float, dv: float
+) -> tuple[float, float] | None:
+    """The UV step that moves 1 mm on the surface at right angles to the UV direction (du, dv)."""
+    point, su, sv = gp_Pnt(), gp_Vec(), gp_Vec()
+    surface.D1(u, v, point, su, sv)
+    along = xyz(su) if dv == 0.0 else add_scaled(scale(xyz(su), du), xyz(sv), dv)
+    across = cross(cross(xyz(su), xyz(sv)), along)
+    # Least squares: a su + b sv = across.
+    uu, uv_, vv = dot(xyz(su), xyz(su)), dot(xyz(su), xyz(sv)), dot(xyz(sv), xyz(sv))
+    det = uu * vv - uv_ * uv_
+    if det <= 1e-300:
+        return None
+    wu, wv = dot(xyz(su), across), dot(xyz(sv), across)
+    a, b = (vv * wu - uv_ * wv) / det, (uu * wv - uv_ * wu) / det
+    length = norm(add_scaled(scale(xyz(su), a), xyz(sv), b))
+    return (a / length, b / length) if length > 0.0 else None
 
 
 def _triangle_centroids(face: TopoDS_Face, diagonal: float) -> list[tuple[float, float]]:

@@ -7,14 +7,20 @@ from typing import Any
 import OCP
 from OCP.TopAbs import TopAbs_FACE
 
-from . import face_graph, step_io
+from . import face_graph, mid_patch, patch_fuse, shells, step_io
 from .args import (
     as_number,
     handle_list,
+    index_list,
     optional_bool,
+    require_direction,
     require_handle,
     require_int,
     require_list,
+    require_non_negative,
+    require_number,
+    require_object,
+    require_point,
     require_positive,
     require_str,
 )
@@ -46,6 +52,48 @@ def describe(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     shape = store.get(require_handle(args))
     mesh_tolerance = require_positive(args, "mesh_tolerance") if optional_bool(args, "mesh", False) else None
     return face_graph.describe(shape, mesh_tolerance)
+
+
+def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    solid = store.get(require_handle(args))
+    count = indexed_map(solid, TopAbs_FACE).Size()
+    face_ids = index_list(args.get("faces"), count, "face", "the solid")
+    if not face_ids:
+        raise BadArgs("`faces` must list at least one face")
+    if ("offset" in args) == ("plane" in args):
+        raise BadArgs("make_patch needs exactly one of `offset` (mm) and `plane` ({origin, normal})")
+    if "offset" in args:
+        patch, faces = mid_patch.offset_patch(solid, face_ids, require_number(args, "offset"))
+    else:
+        plane = require_object(args, "plane")
+        origin, normal = require_point(plane, "origin"), require_direction(plane, "normal")
+        patch, faces = mid_patch.projected_patch(solid, face_ids, origin, normal)
+    return {"handle": store.put(patch), "faces": faces}
+
+
+def fuse(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    handles = handle_list(args, "patches")
+    repeated = sorted({h for h in handles if handles.count(h) > 1})
+    if repeated:
+        raise BadArgs(f"patch handles {repeated} are listed more than once")
+    fuzzy = require_non_negative(args, "fuzzy")
+    fused, described = patch_fuse.fuse([store.get(h) for h in handles], fuzzy)
+    return {"handle": store.put(fused), **described}
+
+
+def make_shells(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    face_map = indexed_map(store.get(require_handle(args)), TopAbs_FACE)
+    groups = require_list(args, "shells")
+    used: dict[int, int] = {}
+    for j, group in enumerate(groups):
+        for face_id in index_list(group, face_map.Size(), "face", "the fused shape"):
+            if face_id in used:
+                raise BadArgs(f"face {face_id} is in shells {used[face_id]} and {j}: one shell per face")
+            used[face_id] = j
+        if not group:
+            raise BadArgs(f"shell {j} is empty: list at least one face per shell")
+    compound, described = shells.make_shells(face_map, groups)
+    return {"handle": store.put(compound), **described}
 
 
 def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
@@ -82,6 +130,9 @@ OPS: dict[str, Op] = {
     "ping": ping,
     "load_step": load_step,
     "describe": describe,
+    "make_patch": make_patch,
+    "fuse": fuse,
+    "make_shells": make_shells,
     "write_step": write_step,
     "free": free,
 }

@@ -1,0 +1,149 @@
+"""`fuse`: patches split at their mutual intersections (BOPAlgo_Builder, non-destructive) so crossing patches
+share their crossing edges; each face of the result traced back to its patch through the builder's history."""
+
+from typing import Any
+
+from OCP.BOPAlgo import BOPAlgo_Builder
+from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve
+from OCP.GCPnts import GCPnts_AbscissaPoint
+from OCP.Message import Message_Fail
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+from OCP.TopExp import TopExp, TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Shape
+
+from .errors import KernelError, one_line
+from .face_measure import measure
+from .topology import IndexedShapeMap, indexed_map
+from .vectors import xyz
+
+# Points reported along each edge, evenly spaced by parameter, both ends included.
+EDGE_POINTS = 5
+
+
+def fuse(patches: list[TopoDS_Shape], fuzzy: float) -> tuple[TopoDS_Shape, dict[str, Any]]:
+    """(F, the reply's `faces` and `edges`).
+
+    Every FACE of every patch is an argument of its own, not every patch: BOPAlgo_Builder does not
+    intersect the sub-shapes of one argument with each other, so the separately offset faces of a patch
+    (plane + bend + plane) would keep unshared edges, and a single argument is refused outright
+    (BOPAlgo_AlertTooFewArguments).
+    """
+    # Every input face once, with the index of the first patch holding it.
+    inputs = IndexedShapeMap()
+    input_patch: list[int] = []
+    for k, patch in enumerate(patches):
+        explorer = TopExp_Explorer(patch, TopAbs_FACE)
+        while explorer.More():
+            if inputs.Add(explorer.Current()) > len(input_patch):
+                input_patch.append(k)
+            explorer.Next()
+    if inputs.Size() < 2:
+        # Nothing to intersect (and BOPAlgo refuses fewer than 2 arguments): F holds the face, if any.
+        fused, maker = TopoDS_Compound(), BRep_Builder()
+        maker.MakeCompound(fused)
+        if inputs.Size() == 1:
+            maker.Add(fused, inputs.FindKey(1))
+        return fused, _describe(fused, input_patch)
+
+    builder = BOPAlgo_Builder()
+    for i in range(inputs.Size()):
+        builder.AddArgument(inputs.FindKey(i + 1))
+    builder.SetFuzzyValue(fuzzy)
+    builder.SetNonDestructive(True)
+    # ~1.7x faster on 2 cores; the result (and its face and edge order) is the same as a serial run.
+    builder.SetRunParallel(True)
+    builder.Perform()
+    if builder.HasErrors():
+        raise KernelError(f"BOPAlgo_Builder failed on {inputs.Size()} faces: {_alerts(builder)}")
+    fused = builder.Shape()
+    patch_of = _trace_patches(builder, inputs, input_patch, indexed_map(fused, TopAbs_FACE))
+    return fused, _describe(fused, patch_of)
+
+
+def _describe(fused: TopoDS_Shape, patch_of: list[int]) -> dict[str, Any]:
+    """The reply's `faces` (patch_of: the patch of each face of F) and `edges`."""
+    face_map = indexed_map(fused, TopAbs_FACE)
+    edge_map = indexed_map(fused, TopAbs_EDGE)
+    edge_faces: list[list[int]] = [[] for _ in range(edge_map.Size())]
+    faces = []
+    for i in range(face_map.Size()):
+        face = TopoDS.Face(face_map.FindKey(i + 1))
+        edges = _face_edges(face, edge_map)
+        for e in edges:
+            edge_faces[e].append(i)
+        try:
+            faces.append({"patch": patch_of[i], **measure(face), "edges": edges})
+        except Exception as exc:
+            raise KernelError(f"fused face {i} (patch {patch_of[i]}): {one_line(exc)}") from exc
+    edges_json = []
+    for e in range(edge_map.Size()):
+        try:
+            edges_json.append(_describe_edge(TopoDS.Edge(edge_map.FindKey(e + 1)), edge_faces[e]))
+        except Exception as exc:
+            raise KernelError(f"fused edge {e} (faces {edge_faces[e]}): {one_line(exc)}") from exc
+    return {"faces": faces, "edges": edges_json}
+
+
+def _trace_patches(
+    builder: BOPAlgo_Builder, inputs: IndexedShapeMap, input_patch: list[int], face_map: IndexedShapeMap
+) -> list[int]:
+    """The patch of each face of the result: an input face is either kept as is (no images, not
+    deleted) or replaced by its images (Modified). A face claimed by two patches (fuzzy-merged overlaps)
+    keeps the lower patch index."""
+    patch_of: list[int | None] = [None] * face_map.Size()
+
+    def claim(face: TopoDS_Shape, patch: int) -> None:
+        index = face_map.FindIndex(face) - 1
+        if index >= 0 and patch_of[index] is None:
+            patch_of[index] = patch
+
+    for i in range(inputs.Size()):
+        face = inputs.FindKey(i + 1)
+        images = builder.Modified(face)
+        if images.Size() == 0:
+            if not builder.IsDeleted(face):
+                claim(face, input_patch[i])
+        elif images.Size() == 1:
+            claim(images.First(), input_patch[i])
+        else:
+            for image in images:
+                claim(image, input_patch[i])
+    missing = [i for i, patch in enumerate(patch_of) if patch is None]
+    if missing:
+        raise KernelError(f"fused faces {missing[:10]} come from no patch (BOPAlgo_Builder history)")
+    return patch_of  # type: ignore[return-value]
+
+
+def _face_edges(face: TopoDS_Shape, edge_map: IndexedShapeMap) -> list[int]:
+    """Edge indices of the face in explorer order, a seam (the same edge twice) once."""
+    edges: list[int] = []
+    explorer = TopExp_Explorer(face, TopAbs_EDGE)
+    while explorer.More():
+        e = edge_map.FindIndex(explorer.Current()) - 1
+        if e not in edges:
+            edges.append(e)
+        explorer.Next()
+    return edges
+
+
+def _describe_edge(edge: TopoDS_Edge, faces: list[int]) -> dict[str, Any]:
+    if BRep_Tool.Degenerated_s(edge):
+        # No 3D curve: the edge is its vertex.
+        point = list(xyz(BRep_Tool.Pnt_s(TopExp.FirstVertex_s(edge))))
+        return {"length": 0.0, "faces": faces, "points": [point] * EDGE_POINTS}
+    curve = BRepAdaptor_Curve(edge)
+    first, last = curve.FirstParameter(), curve.LastParameter()
+    step = (last - first) / (EDGE_POINTS - 1)
+    points = [list(xyz(curve.Value(first + k * step))) for k in range(EDGE_POINTS - 1)]
+    points.append(list(xyz(curve.Value(last))))
+    return {"length": GCPnts_AbscissaPoint.Length_s(curve), "faces": faces, "points": points}
+
+
+def _alerts(builder: BOPAlgo_Builder) -> str:
+    """The builder's failure alerts, e.g. "BOPAlgo_AlertTooFewArguments"."""
+    try:
+        keys = [alert.GetMessageKey() for alert in builder.GetReport().GetAlerts(Message_Fail)]
+    except Exception as exc:  # the report is only for the message: never hide the failure itself
+        return f"(alerts unreadable: {one_line(exc)})"
+    return ", ".join(keys) or "no alert recorded"

@@ -1,0 +1,171 @@
+"""fuse: patches split at their mutual intersections, crossing edges shared, faces traced to their patch."""
+
+from collections import Counter
+from pathlib import Path
+
+import pytest
+from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_FACE
+
+from midsurf_sidecar.topology import indexed_map
+from patch_shapes import horizontal, put_patches, rectangle, vertical
+from shapes import bent_sheet
+
+FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
+
+
+def fuse(client, patches, fuzzy=1e-6):
+    fused = client.ok("fuse", patches=patches, fuzzy=fuzzy)
+    check_consistent(fused)
+    return fused
+
+
+def check_consistent(fused):
+    """Faces' `edges` and edges' `faces` describe the same incidences; 5 points per edge."""
+    from_faces = Counter((e, i) for i, face in enumerate(fused["faces"]) for e in face["edges"])
+    from_edges = Counter((e, i) for e, edge in enumerate(fused["edges"]) for i in edge["faces"])
+    assert from_faces == from_edges
+    assert max(from_faces.values(), default=1) == 1
+    for edge in fused["edges"]:
+        assert len(edge["points"]) == 5
+        assert edge["faces"] == sorted(edge["faces"])
+
+
+def on_line(edge, **fixed):
+    """Whether all points of the edge have the given coordinates (x=, y=, z=)."""
+    axes = {"x": 0, "y": 1, "z": 2}
+    return all(p[axes[k]] == pytest.approx(v, abs=1e-7) for p in edge["points"] for k, v in fixed.items())
+
+
+def test_l_corner_crossing_is_shared_by_four_faces(client):
+    fused = fuse(client, put_patches(client, horizontal(), vertical(1.0)))
+    faces = fused["faces"]
+    pieces = sorted((f["patch"], round(f["area"], 6)) for f in faces)
+    assert pieces == [(0, 40), (0, 2360), (1, 40), (1, 1560)]
+    for face in faces:
+        assert face["normal"] == pytest.approx([0, 0, 1] if face["patch"] == 0 else [1, 0, 0], abs=1e-12)
+    crossing = [e for e in fused["edges"] if len(e["faces"]) == 4]
+    assert len(crossing) == 1
+    (edge,) = crossing
+    assert edge["faces"] == [0, 1, 2, 3]
+    assert edge["length"] == pytest.approx(40.0)
+    ys = sorted(p[1] for p in edge["points"])
+    assert ys == pytest.approx([0, 10, 20, 30, 40])
+    assert on_line(edge, x=1.0, z=1.0)
+    assert all(len(e["faces"]) == 1 for e in fused["edges"] if e is not edge)
+    shape = client.session.store.get(fused["handle"])
+    assert indexed_map(shape, TopAbs_FACE).Size() == 4
+    assert BRepCheck_Analyzer(shape).IsValid()
+
+
+def test_plates_apart_stay_whole(client):
+    far = rectangle((0, 0, 10), (6, 0, 10), (6, 4, 10), (0, 4, 10))
+    fused = fuse(client, put_patches(client, horizontal(), far))
+    assert [f["patch"] for f in fused["faces"]] == [0, 1]
+    assert [f["area"] for f in fused["faces"]] == pytest.approx([2400, 24])
+    assert len(fused["edges"]) == 8
+    assert all(len(e["faces"]) == 1 for e in fused["edges"])
+
+
+def test_t_junction_splits_the_base_and_shares_the_foot(client):
+    fused = fuse(client, put_patches(client, horizontal(), vertical(30.0, z0=1.0)))
+    pieces = sorted((f["patch"], round(f["area"], 6)) for f in fused["faces"])
+    assert pieces == [(0, 1200), (0, 1200), (1, 1560)]
+    (foot,) = [e for e in fused["edges"] if len(e["faces"]) == 3]
+    assert foot["length"] == pytest.approx(40.0)
+    assert on_line(foot, x=30.0, z=1.0)
+    assert Counter(len(e["faces"]) for e in fused["edges"]) == {1: 9, 3: 1}
+
+
+def test_fuzzy_closes_a_small_gap(client):
+    gap = 1e-5
+    lifted = vertical(30.0, z0=1.0 + gap)
+    apart = fuse(client, put_patches(client, horizontal(), lifted), fuzzy=0.0)
+    assert len(apart["faces"]) == 2
+    joined = fuse(client, put_patches(client, horizontal(), lifted), fuzzy=1e-4)
+    assert len(joined["faces"]) == 3
+    assert max(len(e["faces"]) for e in joined["edges"]) == 3
+
+
+def test_overlap_goes_to_the_lower_patch(client):
+    # Coplanar patches overlapping on x 30..60: the common piece is one face, credited to patch 0.
+    shifted = rectangle((30, 0, 1), (90, 0, 1), (90, 40, 1), (30, 40, 1))
+    for patches, pieces in (((horizontal(), shifted), [0, 0, 1]), ((shifted, horizontal()), [0, 0, 1])):
+        fused = fuse(client, put_patches(client, *patches))
+        assert sorted(f["patch"] for f in fused["faces"]) == pieces
+        assert [f["area"] for f in fused["faces"]] == pytest.approx([1200] * 3)
+    same = fuse(client, put_patches(client, horizontal(), horizontal()))
+    assert [(f["patch"], f["area"]) for f in same["faces"]] == [(0, pytest.approx(2400))]
+
+
+def test_faces_of_one_patch_share_their_common_edges(client, tmp_path):
+    # The outer skin of the bend (plane, cylinder, plane) offset face by face: one patch of 3 faces
+    # that only touch; the fuse makes their common edges shared.
+    handle = client.load(bent_sheet(), tmp_path)
+    patch = client.ok("make_patch", handle=handle, faces=[0, 1, 2], offset=-1.0)["handle"]
+    fused = fuse(client, [patch], fuzzy=1e-4)
+    assert [f["patch"] for f in fused["faces"]] == [0, 0, 0]
+    shared = [e for e in fused["edges"] if len(e["faces"]) == 2]
+    assert len(shared) == 2
+    assert all(e["length"] == pytest.approx(10.0) for e in shared)
+
+
+def test_no_patches_give_an_empty_compound(client):
+    fused = client.ok("fuse", patches=[], fuzzy=1e-4)
+    assert fused["faces"] == [] and fused["edges"] == []
+    shape = client.session.store.get(fused["handle"])
+    assert shape.ShapeType() == TopAbs_COMPOUND
+    assert indexed_map(shape, TopAbs_FACE).Size() == 0
+
+
+def test_a_single_face_comes_back_as_is(client):
+    fused = fuse(client, put_patches(client, horizontal()))
+    assert [(f["patch"], f["area"]) for f in fused["faces"]] == [(0, pytest.approx(2400))]
+    assert len(fused["edges"]) == 4 and all(e["faces"] == [0] for e in fused["edges"])
+
+
+def test_open_box_mid_walls_share_every_crossing(client):
+    handle = client.ok("load_step", path=str(FIXTURES / "open_box_ribs.step"))["solids"][0]["handle"]
+    # 80 x 60 x 30 open box, 2 mm walls: outer faces x=0, y=0, y=60, z=0, x=80 -> mid-planes at 1 mm.
+    outer = [0, 1, 3, 4, 5]
+    patches = [client.ok("make_patch", handle=handle, faces=[i], offset=-1.0) for i in outer]
+    fused = fuse(client, [p["handle"] for p in patches], fuzzy=1e-4)
+    assert BRepCheck_Analyzer(client.session.store.get(fused["handle"])).IsValid()
+    # Each patch is cut into pieces that add up to it.
+    for k, patch in enumerate(patches):
+        pieces = sum(f["area"] for f in fused["faces"] if f["patch"] == k)
+        assert pieces == pytest.approx(patch["faces"][0]["area"])
+    # Every wall/bottom and wall/wall crossing runs its full length as X edges (4 faces).
+    crossings = [
+        ({"x": 1, "z": 1}, 60), ({"x": 79, "z": 1}, 60), ({"y": 1, "z": 1}, 80), ({"y": 59, "z": 1}, 80),
+        ({"x": 1, "y": 1}, 30), ({"x": 1, "y": 59}, 30), ({"x": 79, "y": 1}, 30), ({"x": 79, "y": 59}, 30),
+    ]
+    for line, length in crossings:
+        on = [e for e in fused["edges"] if on_line(e, **line)]
+        assert all(len(e["faces"]) == 4 for e in on), line
+        assert sum(e["length"] for e in on) == pytest.approx(length), line
+    assert Counter(len(e["faces"]) for e in fused["edges"])[4] == 20
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        ({"patches": "all", "fuzzy": 1e-4}, "`patches`"),
+        ({"patches": [0], "fuzzy": 1e-4}, "`patches`"),
+        ({"patches": [99], "fuzzy": 1e-4}, "no shape with handle 99"),
+        ({"fuzzy": 1e-4}, "`patches`"),
+        ({"patches": []}, "`fuzzy`"),
+        ({"patches": [], "fuzzy": -1e-4}, "`fuzzy` must be >= 0"),
+        ({"patches": [], "fuzzy": "tight"}, "`fuzzy`"),
+    ],
+)
+def test_bad_arguments(client, args, needle):
+    err = client.err("fuse", **args)
+    assert err["code"] == "bad_args"
+    assert needle in err["message"]
+
+
+def test_repeated_patch_is_bad_args(client):
+    (patch,) = put_patches(client, horizontal())
+    err = client.err("fuse", patches=[patch, patch], fuzzy=1e-4)
+    assert err["code"] == "bad_args" and str(patch) in err["message"]

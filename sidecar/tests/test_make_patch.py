@@ -1,0 +1,291 @@
+"""make_patch: faces offset along their outward normals or projected onto a plane, as a compound."""
+
+import math
+from pathlib import Path
+
+import pytest
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Surface
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon, BRepBuilderAPI_NurbsConvert
+from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeRevol
+from OCP.BRepTools import BRepTools
+from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Cylinder, GeomAbs_OffsetSurface, GeomAbs_Plane
+from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt
+from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_FACE, TopAbs_VERTEX, TopAbs_WIRE
+from OCP.TopoDS import TopoDS
+
+from midsurf_sidecar.topology import indexed_map
+from shapes import (
+    BEND_CENTRE,
+    BEND_INNER,
+    BEND_OUTER,
+    bent_sheet,
+    box,
+    cone,
+    plate_with_hole,
+    shaft,
+    sphere,
+    torus,
+)
+
+FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
+# drafted_rib.step: 100 x 60 x 3 plate, rib 20 high centred on x = 50, faces 7 and 8 its drafted sides.
+RIB_SIDES = [7, 8]
+RIB_PLANE = {"origin": [50.0, 0.0, 0.0], "normal": [1.0, 0.0, 0.0]}
+
+
+def dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def load_fixture(client, name):
+    return client.ok("load_step", path=str(FIXTURES / name))["solids"][0]["handle"]
+
+
+def graph(client, handle):
+    return client.ok("describe", handle=handle)
+
+
+def face_with(graph_json, kind, predicate=lambda f: True):
+    matches = [f for f in graph_json["faces"] if f["surface"]["kind"] == kind and predicate(f)]
+    assert len(matches) == 1, [f["id"] for f in matches]
+    return matches[0]
+
+
+def patch_faces(client, handle):
+    shape = client.session.store.get(handle)
+    assert shape.ShapeType() == TopAbs_COMPOUND
+    faces = indexed_map(shape, TopAbs_FACE)
+    return [TopoDS.Face(faces.FindKey(i + 1)) for i in range(faces.Size())]
+
+
+def vertices(shape):
+    vertex_map = indexed_map(shape, TopAbs_VERTEX)
+    points = [BRep_Tool.Pnt_s(TopoDS.Vertex(vertex_map.FindKey(i + 1))) for i in range(vertex_map.Size())]
+    return [(p.X(), p.Y(), p.Z()) for p in points]
+
+
+def test_plate_faces_move_into_the_material(client, tmp_path):
+    handle = client.load(box(40, 40, 5), tmp_path)
+    g = graph(client, handle)
+    top = face_with(g, "plane", lambda f: f["normal"][2] > 0.99)["id"]
+    bottom = face_with(g, "plane", lambda f: f["normal"][2] < -0.99)["id"]
+    ok = client.ok("make_patch", handle=handle, faces=[top, bottom], offset=-1.0)
+    assert [f["source"] for f in ok["faces"]] == [top, bottom]
+    upper, lower = ok["faces"]
+    assert upper["area"] == pytest.approx(1600.0)
+    assert upper["centroid"] == pytest.approx([20, 20, 4])
+    assert upper["normal"] == pytest.approx([0, 0, 1], abs=1e-12)
+    assert lower["centroid"] == pytest.approx([20, 20, 1])
+    assert lower["normal"] == pytest.approx([0, 0, -1], abs=1e-12)
+    # The compound holds the new faces in request order.
+    new_top, new_bottom = patch_faces(client, ok["handle"])
+    assert {round(z, 9) for _, _, z in vertices(new_top)} == {4.0}
+    assert {round(z, 9) for _, _, z in vertices(new_bottom)} == {1.0}
+    assert BRepCheck_Analyzer(client.session.store.get(ok["handle"])).IsValid()
+
+
+def test_bend_cylinders_meet_at_the_mid_radius(client, tmp_path):
+    handle = client.load(bent_sheet(), tmp_path)
+    g = graph(client, handle)
+    outer = face_with(g, "cylinder", lambda f: f["surface"]["convex"])
+    inner = face_with(g, "cylinder", lambda f: not f["surface"]["convex"])
+    assert (outer["surface"]["radius"], inner["surface"]["radius"]) == pytest.approx((BEND_OUTER, BEND_INNER))
+    ok = client.ok("make_patch", handle=handle, faces=[outer["id"], inner["id"]], offset=-1.0)
+    for new_face, described, source in zip(patch_faces(client, ok["handle"]), ok["faces"], (outer, inner)):
+        surface = BRepAdaptor_Surface(new_face)
+        assert surface.GetType() == GeomAbs_Cylinder
+        assert surface.Cylinder().Radius() == pytest.approx(4.0)
+        assert surface.Cylinder().Location().X() == pytest.approx(BEND_CENTRE[0])
+        assert surface.Cylinder().Location().Y() == pytest.approx(BEND_CENTRE[1])
+        # A quarter turn of radius 4, 10 long; the outward normal keeps its side.
+        assert described["area"] == pytest.approx(math.pi / 2 * 4.0 * 10.0)
+        assert dot(described["normal"], source["normal"]) > 0.99
+
+
+def test_bspline_face_offsets(client, tmp_path):
+    converter = BRepBuilderAPI_NurbsConvert(shaft(5.0, 20.0), True)
+    handle = client.load(converter.Shape(), tmp_path)
+    faces = indexed_map(client.session.store.get(handle), TopAbs_FACE)
+    kinds = [BRepAdaptor_Surface(TopoDS.Face(faces.FindKey(i + 1))).GetType() for i in range(faces.Size())]
+    assert set(kinds) == {GeomAbs_BSplineSurface}
+    lateral = max(graph(client, handle)["faces"], key=lambda f: f["area"])
+    ok = client.ok("make_patch", handle=handle, faces=[lateral["id"]], offset=-1.0)
+    (new_face,) = patch_faces(client, ok["handle"])
+    surface = BRepAdaptor_Surface(new_face)
+    assert surface.GetType() == GeomAbs_OffsetSurface
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(new_face)
+    for u in (0.1, 0.5, 0.9):
+        p = surface.Value(u0 + u * (u1 - u0), 0.5 * (v0 + v1))
+        assert math.hypot(p.X(), p.Y()) == pytest.approx(4.0, abs=1e-6)
+    # BRepGProp integrates the rational surface 0.3 % high, the same way on both: radius 5 -> 4.
+    assert ok["faces"][0]["area"] == pytest.approx(lateral["area"] * 4.0 / 5.0, rel=1e-6)
+    assert ok["faces"][0]["area"] == pytest.approx(2 * math.pi * 4.0 * 20.0, rel=1e-2)
+    assert ok["faces"][0]["centroid"] == pytest.approx([0, 0, 10], abs=1e-2)
+
+
+def test_thin_ring_gets_an_interior_normal(client, tmp_path):
+    # A tube 0.5 mm thick and 51 m in radius: its UV centre and coarse-mesh triangles all miss the top face.
+    section = BRepBuilderAPI_MakePolygon()
+    for x, z in ((50999.5, 0.0), (51000.0, 0.0), (51000.0, 10.0), (50999.5, 10.0)):
+        section.Add(gp_Pnt(x, 0.0, z))
+    section.Close()
+    face = BRepBuilderAPI_MakeFace(section.Wire(), True).Face()
+    tube = BRepPrimAPI_MakeRevol(face, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))).Shape()
+    handle = client.load(tube, tmp_path)
+    top = face_with(graph(client, handle), "plane", lambda f: f["normal"][2] > 0.99)
+    ok = client.ok("make_patch", handle=handle, faces=[top["id"]], offset=-1.0)
+    assert ok["faces"][0]["normal"] == pytest.approx([0, 0, 1], abs=1e-12)
+    assert ok["faces"][0]["centroid"][2] == pytest.approx(9.0)
+
+
+def test_cone_offset_shrinks_the_radius_by_the_cosine(client, tmp_path):
+    handle = client.load(cone(), tmp_path)  # radii 5 -> 2 over 10
+    lateral = face_with(graph(client, handle), "cone")
+    ok = client.ok("make_patch", handle=handle, faces=[lateral["id"]], offset=-1.0)
+    half_angle = math.atan2(3.0, 10.0)
+    (new_face,) = patch_faces(client, ok["handle"])
+    rims = sorted({(round(math.hypot(x, y), 9), round(z, 9)) for x, y, z in vertices(new_face)})
+    # The normal leans up by the half angle: each rim moves in by its cosine and up by its sine.
+    shift_in, shift_up = math.cos(half_angle), math.sin(half_angle)
+    assert len(rims) == 2
+    assert rims[0] == pytest.approx((2.0 - shift_in, 10.0 - shift_up))
+    assert rims[1] == pytest.approx((5.0 - shift_in, -shift_up))
+    assert dot(ok["faces"][0]["normal"], lateral["normal"]) > 0.99
+
+
+@pytest.mark.parametrize(
+    ("shape", "kind", "offset"),
+    [
+        (shaft(5.0), "cylinder", -5.0),  # convex: d < 0 shrinks the radius to 0
+        (plate_with_hole(5.0), "cylinder", 5.0),  # concave (a hole): d > 0 shrinks it
+        (sphere(5.0), "sphere", -5.0),
+        (torus(10.0, 2.0), "torus", -2.0),
+        (cone(), "cone", -2.5),  # smallest radius 2, shrinks by 2.5 cos(16.7 deg) = 2.39
+    ],
+)
+def test_collapsing_offsets_are_refused(client, tmp_path, shape, kind, offset):
+    handle = client.load(shape, tmp_path)
+    face = face_with(graph(client, handle), kind)["id"]
+    err = client.err("make_patch", handle=handle, faces=[face], offset=offset)
+    assert err["code"] == "patch_failed"
+    assert err["message"].startswith(f"face {face}: ")
+    assert "collapse" in err["message"]
+    # Just short of the axis is fine.
+    shorter = offset * 0.9 if kind != "cone" else -2.0
+    assert client.ok("make_patch", handle=handle, faces=[face], offset=shorter)["faces"][0]["area"] > 0
+
+
+def test_draft_sides_project_onto_the_bisector_plane(client):
+    handle = load_fixture(client, "drafted_rib.step")
+    g = graph(client, handle)
+    sources = [g["faces"][i] for i in RIB_SIDES]
+    ok = client.ok("make_patch", handle=handle, faces=RIB_SIDES, plane=RIB_PLANE)
+    assert [f["source"] for f in ok["faces"]] == RIB_SIDES
+    patch = client.session.store.get(ok["handle"])
+    assert BRepCheck_Analyzer(patch).IsValid()
+    for new_face, described, source in zip(patch_faces(client, ok["handle"]), ok["faces"], sources):
+        assert BRepCheck_Analyzer(new_face).IsValid()
+        assert BRepAdaptor_Surface(new_face).GetType() == GeomAbs_Plane
+        points = vertices(new_face)
+        assert len(points) == 4
+        assert all(x == pytest.approx(50.0, abs=1e-9) for x, _, _ in points)
+        # The side spans y 0..60 and z 3..23: its shadow on x = 50 is a 60 x 20 rectangle.
+        corners = sorted({(round(y, 9), round(z, 9)) for _, y, z in points})
+        assert corners == [(0, 3), (0, 23), (60, 3), (60, 23)]
+        assert described["area"] == pytest.approx(60.0 * 20.0)
+        assert described["centroid"] == pytest.approx([50, 30, 13])
+        # Plane normal or its opposite, whichever the source side faces.
+        side = math.copysign(1.0, source["normal"][0])
+        assert described["normal"] == pytest.approx([side, 0, 0], abs=1e-12)
+    assert [f["normal"][0] for f in ok["faces"]] == pytest.approx([-1.0, 1.0])
+
+
+def test_projection_keeps_holes_and_orientation(client, tmp_path):
+    handle = client.load(plate_with_hole(5.0), tmp_path)
+    g = graph(client, handle)
+    top = face_with(g, "plane", lambda f: f["normal"][2] > 0.99)
+    bottom = face_with(g, "plane", lambda f: f["normal"][2] < -0.99)
+    tilt = [0.1, 0.2, 1.0]
+    length = math.sqrt(dot(tilt, tilt))
+    unit = [c / length for c in tilt]
+    origin = [20.0, 20.0, 2.5]
+    ok = client.ok("make_patch", handle=handle, faces=[top["id"], bottom["id"]],
+                   plane={"origin": origin, "normal": tilt})
+    area = 40 * 40 - math.pi * 25
+    for new_face, described, sign in zip(patch_faces(client, ok["handle"]), ok["faces"], (1.0, -1.0)):
+        assert BRepCheck_Analyzer(new_face).IsValid()
+        assert indexed_map(new_face, TopAbs_WIRE).Size() == 2
+        # A region of area A with normal z, projected along n: A |n_z| (the shadow of the hole too).
+        assert described["area"] == pytest.approx(area * unit[2], rel=1e-6)
+        assert described["normal"] == pytest.approx([sign * c for c in unit], abs=1e-9)
+        for point in vertices(new_face):
+            assert dot([p - o for p, o in zip(point, origin)], unit) == pytest.approx(0.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("nurbs", [False, True])
+def test_projection_of_arcs_and_closed_splines_onto_a_tilted_plane(client, tmp_path, nurbs):
+    # Tilted so that ProjLib flips the sense of the bend's clockwise arc (it then trims the ellipse on
+    # the wrong, 3/4 arc); as NURBS, the hole is one closed, non-periodic B-spline edge.
+    shape = plate_with_hole(5.0) if nurbs else bent_sheet()
+    if nurbs:
+        shape = BRepBuilderAPI_NurbsConvert(shape, True).Shape()
+    handle = client.load(shape, tmp_path)
+    caps = [f for f in graph(client, handle)["faces"] if abs(f["normal"][2]) > 0.99]
+    assert len(caps) == 2
+    tilt = [0.01, -0.02, 1.015]
+    cosine = tilt[2] / math.sqrt(dot(tilt, tilt))
+    ok = client.ok("make_patch", handle=handle, faces=[f["id"] for f in caps],
+                   plane={"origin": [1.0, 2.0, 3.0], "normal": tilt})
+    for new_face, described, source in zip(patch_faces(client, ok["handle"]), ok["faces"], caps):
+        assert BRepCheck_Analyzer(new_face).IsValid()
+        # BRepGProp integrates rational B-splines only to ~1e-4.
+        assert described["area"] == pytest.approx(source["area"] * cosine, rel=1e-3 if nurbs else 1e-9)
+        assert dot(described["normal"], source["normal"]) > 0.99
+
+
+def test_edge_on_face_cannot_be_projected(client):
+    handle = load_fixture(client, "drafted_rib.step")
+    err = client.err("make_patch", handle=handle, faces=[7, 4], plane=RIB_PLANE)  # 4: the plate's underside
+    assert err["code"] == "patch_failed"
+    assert err["message"].startswith("face 4: ") and "edge-on" in err["message"]
+
+
+def test_failed_patch_leaves_no_handle(client, tmp_path):
+    handle = client.load(shaft(5.0), tmp_path)
+    lateral = face_with(graph(client, handle), "cylinder")["id"]
+    client.err("make_patch", handle=handle, faces=[lateral], offset=-10.0)
+    ok = client.ok("make_patch", handle=handle, faces=[lateral], offset=-1.0)
+    assert ok["handle"] == handle + 1
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        ({"faces": [6], "offset": -1.0}, "face 6 out of range"),
+        ({"faces": [-1], "offset": -1.0}, "face -1 out of range"),
+        ({"faces": [0, 0], "offset": -1.0}, "face 0 is listed twice"),
+        ({"faces": [], "offset": -1.0}, "at least one face"),
+        ({"faces": "all", "offset": -1.0}, "must be a list"),
+        ({"faces": [True], "offset": -1.0}, "integers"),
+        ({"faces": [0]}, "exactly one of"),
+        ({"faces": [0], "offset": -1.0, "plane": RIB_PLANE}, "exactly one of"),
+        ({"faces": [0], "offset": "thin"}, "`offset`"),
+        ({"faces": [0], "offset": float("nan")}, None),
+        ({"faces": [0], "plane": {"origin": [0, 0, 0], "normal": [0, 0, 0]}}, "non-zero"),
+        ({"faces": [0], "plane": {"origin": [0, 0], "normal": [0, 0, 1]}}, "`origin`"),
+        ({"faces": [0], "plane": [0, 0, 1]}, "`plane`"),
+    ],
+)
+def test_bad_arguments(client, tmp_path, args, needle):
+    handle = client.load(box(), tmp_path)
+    err = client.err("make_patch", handle=handle, **args)
+    assert err["code"] == "bad_args", err
+    if needle is not None:
+        assert needle in err["message"]
+
+
+@pytest.mark.parametrize("handle", [0, -1, 99, "1"])
+def test_bad_handles(client, handle):
+    assert client.err("make_patch", handle=handle, faces=[0], offset=-1.0)["code"] == "bad_args"

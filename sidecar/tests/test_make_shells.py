@@ -1,0 +1,131 @@
+"""make_shells: shells of fused faces in one compound; shared edges survive a STEP round trip."""
+
+import pytest
+from OCP.BRepGProp import BRepGProp
+from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaces
+from OCP.GProp import GProp_GProps
+from OCP.IFSelect import IFSelect_RetDone
+from OCP.STEPControl import STEPControl_Reader
+from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL
+from OCP.TopExp import TopExp
+
+from midsurf_sidecar.topology import indexed_map
+from patch_shapes import horizontal, put_patches, rectangle, vertical
+
+
+def fused(client, *faces):
+    return client.ok("fuse", patches=put_patches(client, *faces), fuzzy=1e-6)
+
+
+def big_faces(fuse_reply, min_area=100.0):
+    return [i for i, f in enumerate(fuse_reply["faces"]) if f["area"] > min_area]
+
+
+def read_step(path):
+    reader = STEPControl_Reader()
+    assert reader.ReadFile(str(path)) == IFSelect_RetDone
+    reader.TransferRoots()
+    return reader.OneShape()
+
+
+def faces_per_edge(shape):
+    """How many faces use each edge, as a sorted list."""
+    ancestors = EdgeFaces()
+    TopExp.MapShapesAndAncestors_s(shape, TopAbs_EDGE, TopAbs_FACE, ancestors)
+    return sorted(ancestors.FindFromIndex(i + 1).Size() for i in range(ancestors.Size()))
+
+
+def face_areas(shape):
+    faces = indexed_map(shape, TopAbs_FACE)
+    areas = []
+    for i in range(faces.Size()):
+        props = GProp_GProps()
+        BRepGProp.SurfaceProperties_s(faces.FindKey(i + 1), props)
+        areas.append(props.Mass())
+    return areas
+
+
+def test_l_corner_shell_keeps_its_shared_edge_through_step(client, tmp_path):
+    f = fused(client, horizontal(), vertical(1.0))
+    pair = big_faces(f)
+    assert len(pair) == 2
+    ok = client.ok("make_shells", handle=f["handle"], shells=[pair])
+    assert sorted(ok["faces"]) == sorted(pair)
+    assert ok["valid"] is True
+    shells = client.session.store.get(ok["handle"])
+    assert shells.ShapeType() == TopAbs_COMPOUND
+    assert indexed_map(shells, TopAbs_SHELL).Size() == 1
+
+    path = tmp_path / "l.step"
+    client.ok("write_step", path=str(path), handle=ok["handle"], faces=[])
+    back = read_step(path)
+    assert indexed_map(back, TopAbs_SHELL).Size() == 1
+    assert indexed_map(back, TopAbs_FACE).Size() == 2
+    assert faces_per_edge(back) == [1] * 6 + [2]
+
+
+def test_faces_are_numbered_like_the_shells_shape(client):
+    f = fused(client, horizontal(), vertical(30.0, z0=1.0))
+    areas = [face["area"] for face in f["faces"]]
+    base = [i for i, face in enumerate(f["faces"]) if face["patch"] == 0]
+    wall = [i for i, face in enumerate(f["faces"]) if face["patch"] == 1]
+    ok = client.ok("make_shells", handle=f["handle"], shells=[wall, list(reversed(base))])
+    assert sorted(ok["faces"]) == sorted(base + wall)
+    shells = client.session.store.get(ok["handle"])
+    assert indexed_map(shells, TopAbs_SHELL).Size() == 2
+    # faces[j] is the F-index of face j of S (MapShapes order): same face, same area.
+    assert face_areas(shells) == pytest.approx([areas[i] for i in ok["faces"]])
+    assert ok["valid"] is True
+
+
+def test_t_junction_in_one_shell_stays_non_manifold(client, tmp_path):
+    f = fused(client, horizontal(), vertical(30.0, z0=1.0))
+    ok = client.ok("make_shells", handle=f["handle"], shells=[[0, 1, 2]])
+    assert ok["valid"] is True
+    path = tmp_path / "t.step"
+    client.ok("write_step", path=str(path), handle=ok["handle"], faces=[])
+    back = read_step(path)
+    assert indexed_map(back, TopAbs_FACE).Size() == 3
+    assert faces_per_edge(back).count(3) == 1
+
+
+def test_disconnected_faces_in_one_shell_are_reported_invalid(client):
+    far = rectangle((0, 0, 10), (6, 0, 10), (6, 4, 10), (0, 4, 10))
+    f = fused(client, horizontal(), far)
+    assert client.ok("make_shells", handle=f["handle"], shells=[[0, 1]])["valid"] is False
+    assert client.ok("make_shells", handle=f["handle"], shells=[[0], [1]])["valid"] is True
+
+
+def test_no_shells_give_an_empty_compound_that_writes(client, tmp_path):
+    f = fused(client, horizontal(), vertical(1.0))
+    ok = client.ok("make_shells", handle=f["handle"], shells=[])
+    assert ok["faces"] == [] and ok["valid"] is True
+    path = tmp_path / "empty.step"
+    assert client.ok("write_step", path=str(path), handle=ok["handle"], faces=[])["bytes"] > 0
+    reader = STEPControl_Reader()
+    assert reader.ReadFile(str(path)) == IFSelect_RetDone
+
+
+@pytest.mark.parametrize(
+    ("shells", "needle"),
+    [
+        ([[4]], "face 4 out of range"),
+        ([[-1]], "face -1 out of range"),
+        ([[0, 0]], "face 0 is listed twice"),
+        ([[0, 1], [1, 2]], "face 1 is in shells 0 and 1"),
+        ([[0], []], "shell 1 is empty"),
+        ([[0.5]], "integers"),
+        ([3], "must be a list"),
+        ("all", "`shells`"),
+    ],
+)
+def test_bad_arguments(client, shells, needle):
+    f = fused(client, horizontal(), vertical(1.0))
+    err = client.err("make_shells", handle=f["handle"], shells=shells)
+    assert err["code"] == "bad_args"
+    assert needle in err["message"]
+
+
+@pytest.mark.parametrize("handle", [0, -3, 99])
+def test_bad_handles(client, handle):
+    assert client.err("make_shells", handle=handle, shells=[])["code"] == "bad_args"
