@@ -122,7 +122,8 @@ pub struct ResultSummary {
 
 #[derive(Debug, Clone, Serialize)]
 pub struct Warning {
-    /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict, thickness_step.
+    /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict,
+    /// thickness_step, partial_overlap.
     pub code: &'static str,
     pub message: String,
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -9,7 +9,7 @@ use crate::face_graph::FaceGraph;
 use crate::pairing::FaceRole;
 use crate::pairs_report::{pair_solid, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
-use crate::patch::plan::{plan_patches, PatchPlan};
+use crate::patch::plan::{plan_patches, PatchPlan, PlanNote};
 use crate::patch::trim::{connected_sets, find_branches};
 use crate::report::{self, *};
 use crate::sidecar::protocol::{FaceAttributes, Fused, MadePatch, Request, Shells, Written};
@@ -54,7 +54,9 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
         warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
-        for plan in plan_patches(&solid.graph, &sp.pairing) {
+        let (plans, notes) = plan_patches(&solid.graph, &sp.pairing);
+        warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
+        for plan in plans {
             let request = Request::MakePatch { handle: solid.handle, faces: plan.faces.clone(), placement: plan.placement.clone() };
             match sidecar.call::<MadePatch>(&request) {
                 Ok(patch) => made.push(Made { solid: i + 1, plan, handle: patch.handle }),
@@ -143,6 +145,29 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     }
     eprintln!("{}", summary_line(&args.output, &report));
     Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })
+}
+
+fn plan_warning(solid: usize, note: PlanNote) -> Warning {
+    match note {
+        PlanNote::ThicknessStep { group, faces, thickness: t } => Warning {
+            code: "thickness_step",
+            message: format!(
+                "group {group}: both sides span a thickness step ({:.3}..{:.3}); the patch is offset at the mean {:.3}",
+                t.min, t.max, t.mean
+            ),
+            solid: Some(solid),
+            faces,
+        },
+        PlanNote::PartialOverlap { group, faces, coverage } => Warning {
+            code: "partial_overlap",
+            message: format!(
+                "group {group}: the partners cover only {:.0}% of the offset faces; the patch runs past the wall",
+                coverage * 100.0
+            ),
+            solid: Some(solid),
+            faces,
+        },
+    }
 }
 
 fn summary_line(output: &Path, r: &Report) -> String {

@@ -27,16 +27,75 @@ pub struct PatchPlan {
 /// Reference faces of one group whose thicknesses differ by less than this share are offset together.
 const SAME_THICKNESS: f64 = 0.01;
 
-pub fn plan_patches(graph: &FaceGraph, pairing: &Pairing) -> Vec<PatchPlan> {
+/// Each face of `side` with the pairs of the group it belongs to, by face id.
+fn pairs_per_face<'a>(side: &[FaceId], pairs: &[usize], pairing: &'a Pairing) -> Vec<(FaceId, Vec<&'a Pair>)> {
+    let mut out: Vec<(FaceId, Vec<&Pair>)> = side
+        .iter()
+        .map(|&f| (f, pairs.iter().map(|&i| &pairing.pairs[i]).filter(|p| p.faces.contains(&f)).collect()))
+        .collect();
+    out.sort_by_key(|(f, _)| *f);
+    out
+}
+
+/// Every face of the side sits at one thickness from its partners (a thickness step lies between faces).
+fn uniform(per_face: &[(FaceId, Vec<&Pair>)]) -> bool {
+    per_face.iter().all(|(_, pairs)| {
+        let t = combined(pairs);
+        t.max - t.min <= SAME_THICKNESS * t.mean
+    })
+}
+
+/// Why a group's patch may not lie mid-way everywhere.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum PlanNote {
+    /// Both sides span a thickness step: offset at the mean.
+    ThicknessStep { group: usize, faces: Vec<FaceId>, thickness: Thickness },
+    /// Neither side is mostly covered by its partners: the patch overshoots the wall.
+    PartialOverlap { group: usize, faces: Vec<FaceId>, coverage: f64 },
+}
+
+/// The larger side is kept as the reference while at least this share of it faces its partners.
+const MIN_COVERAGE: f64 = 0.5;
+
+/// The side to offset. The paper offsets the larger face (fewer extensions later), which assumes it is mostly
+/// covered by its partners: its excess is then the overshoot trimmed at joints. When the overlap covers less
+/// than half of it, the better covered side is used instead; and a side whose faces each sit at one thickness
+/// is preferred to one spanning a thickness step.
+fn choose_reference<'a>(
+    graph: &FaceGraph,
+    group: &crate::pairing::PairGroup,
+    pairing: &'a Pairing,
+) -> (Vec<(FaceId, Vec<&'a Pair>)>, Option<PlanNote>) {
+    let area = |side: usize| group.sides[side].iter().map(|&f| graph.faces[f].area).sum::<f64>();
+    let coverage = |side: usize| (group.overlap_area / area(side)).min(1.0);
+    let larger = group.reference as usize;
+    let order = if coverage(larger) >= MIN_COVERAGE || coverage(larger) >= coverage(1 - larger) {
+        [larger, 1 - larger]
+    } else {
+        [1 - larger, larger]
+    };
+    let candidates = order.map(|side| pairs_per_face(&group.sides[side], &group.pairs, pairing));
+    let chosen = if uniform(&candidates[0]) || !uniform(&candidates[1]) { 0 } else { 1 };
+    let side = order[chosen];
+    let note = if !uniform(&candidates[chosen]) {
+        Some(PlanNote::ThicknessStep { group: group.id, faces: group.sides[side].clone(), thickness: group.thickness })
+    } else if coverage(side) < MIN_COVERAGE {
+        Some(PlanNote::PartialOverlap { group: group.id, faces: group.sides[side].clone(), coverage: coverage(side) })
+    } else {
+        None
+    };
+    let [first, second] = candidates;
+    (if chosen == 0 { first } else { second }, note)
+}
+
+pub fn plan_patches(graph: &FaceGraph, pairing: &Pairing) -> (Vec<PatchPlan>, Vec<PlanNote>) {
     let mut plans = Vec::new();
+    let mut notes = Vec::new();
     for group in &pairing.groups {
-        let reference = &group.sides[group.reference as usize];
-        // Each reference face with the pairs it belongs to.
-        let mut per_face: Vec<(FaceId, Vec<&Pair>)> = reference
-            .iter()
-            .map(|&f| (f, group.pairs.iter().map(|&i| &pairing.pairs[i]).filter(|p| p.faces.contains(&f)).collect()))
-            .collect();
-        per_face.sort_by_key(|(f, _)| *f);
+        let (per_face, warning) = choose_reference(graph, group, pairing);
+        if let Some(w) = warning {
+            notes.push(w);
+        }
         if group.kind == PairKind::Draft {
             for (face, pairs) in &per_face {
                 plans.push(draft_plan(graph, group.id, *face, pairs));
@@ -65,7 +124,7 @@ pub fn plan_patches(graph: &FaceGraph, pairing: &Pairing) -> Vec<PatchPlan> {
             });
         }
     }
-    plans
+    (plans, notes)
 }
 
 /// Overlap-weighted mean thickness of a face's pairs, with their range.
@@ -135,7 +194,8 @@ mod tests {
     fn plate_offsets_its_larger_face_by_half_the_thickness() {
         let g = synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0));
         let pairing = detect(&g, &Tolerances::new(120.0, 3.0, 0.05), &[true; 6]);
-        let plans = plan_patches(&g, &pairing);
+        let (plans, steps) = plan_patches(&g, &pairing);
+        assert!(steps.is_empty());
         assert_eq!(plans.len(), 1);
         assert_eq!(plans[0].faces, vec![4]);
         assert_eq!(plans[0].placement, Placement::Offset(-1.0));
@@ -152,8 +212,53 @@ mod tests {
         ];
         let g = synthetic::graph(faces, &[]);
         let pairing = detect(&g, &Tolerances::new(60.0, 4.0, 0.05), &[true; 3]);
-        let plans = plan_patches(&g, &pairing);
+        let (plans, _) = plan_patches(&g, &pairing);
         let offsets: Vec<(Vec<FaceId>, Placement)> = plans.iter().map(|p| (p.faces.clone(), p.placement.clone())).collect();
         assert_eq!(offsets, vec![(vec![1], Placement::Offset(-1.0)), (vec![2], Placement::Offset(-1.5))]);
+    }
+
+    #[test]
+    fn a_step_under_the_larger_face_is_offset_from_the_other_side() {
+        // A long bottom (larger) under two shorter tops at 2 and 3: the bottom spans the step, the tops do
+        // not, so each top is offset by its own half thickness.
+        let faces = vec![
+            synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 60.0, -DVec3::Z),
+            synthetic::rect(DVec3::new(0.0, 0.0, 2.0), DVec3::X * 25.0, DVec3::Y * 10.0, DVec3::Z),
+            synthetic::rect(DVec3::new(30.0, 0.0, 3.0), DVec3::X * 25.0, DVec3::Y * 10.0, DVec3::Z),
+        ];
+        let g = synthetic::graph(faces, &[]);
+        let pairing = detect(&g, &Tolerances::new(70.0, 4.0, 0.05), &[true; 3]);
+        assert_eq!(pairing.groups[0].reference, crate::pairing::Side::A, "the bottom is larger");
+        let (plans, steps) = plan_patches(&g, &pairing);
+        assert!(steps.is_empty());
+        let offsets: Vec<f64> = plans
+            .iter()
+            .map(|p| match p.placement {
+                Placement::Offset(d) => d,
+                Placement::Plane { .. } => panic!("parallel pairs are offset"),
+            })
+            .collect();
+        assert_eq!(plans.iter().map(|p| p.faces.clone()).collect::<Vec<_>>(), vec![vec![1], vec![2]]);
+        assert!((offsets[0] + 1.0).abs() < 1e-12 && (offsets[1] + 1.5).abs() < 1e-12, "{offsets:?}");
+    }
+
+    #[test]
+    fn a_larger_face_mostly_beyond_its_partner_is_not_offset() {
+        // A 100 x 10 bottom under a 20 x 10 top: offsetting the bottom would put 80% of the patch where no
+        // wall is, so the top (fully covered) is offset instead; 40% coverage keeps the larger face.
+        let faces = |w: f64| {
+            vec![
+                synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 100.0, -DVec3::Z),
+                synthetic::rect(DVec3::new(10.0, 0.0, 2.0), DVec3::X * w, DVec3::Y * 10.0, DVec3::Z),
+            ]
+        };
+        let tol = Tolerances::new(110.0, 3.0, 0.05);
+        let g = synthetic::graph(faces(20.0), &[]);
+        let (plans, notes) = plan_patches(&g, &detect(&g, &tol, &[true; 2]));
+        assert_eq!(plans[0].faces, vec![1]);
+        assert!(notes.is_empty());
+        let g = synthetic::graph(faces(60.0), &[]);
+        let (plans, _) = plan_patches(&g, &detect(&g, &tol, &[true; 2]));
+        assert_eq!(plans[0].faces, vec![0]);
     }
 }

@@ -1,0 +1,95 @@
+//! `midsurf run` from the outside: outputs, exit codes, atomic writing, determinism.
+
+mod common;
+
+use common::{midsurf, outcome, root, scratch};
+use serde_json::Value;
+
+fn run(input: &str, output: &std::path::Path, report: &std::path::Path, extra: &[&str]) -> common::Outcome {
+    let mut cmd = midsurf();
+    cmd.args(["run", input, "-o", output.to_str().unwrap(), "--report", report.to_str().unwrap()]).args(extra);
+    outcome(&mut cmd)
+}
+
+fn read_json(path: &std::path::Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn flat_plate_gives_one_patch_at_half_thickness() {
+    let dir = scratch("run-plate");
+    let (out, rep) = (dir.join("mid.step"), dir.join("report.json"));
+    let o = run("fixtures/flat_plate.step", &out, &rep, &[]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let report = read_json(&rep);
+    let patches = report["patches"].as_array().unwrap();
+    assert_eq!(patches.len(), 1);
+    assert_eq!(patches[0]["thickness"]["mean"], 2.0);
+    assert!((patches[0]["area"].as_f64().unwrap() - 6000.0).abs() < 1e-6);
+    assert_eq!(report["result"]["valid"], true);
+    assert_eq!(report["result"]["shells"], 1);
+    let step = std::fs::read_to_string(&out).unwrap();
+    assert!(step.contains("patch 1 t=2.000"), "face names in the STEP");
+    // Nothing but the two outputs in the directory: no temporary left behind.
+    let mut names: Vec<String> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    names.sort();
+    assert_eq!(names, ["mid.step", "report.json"]);
+}
+
+#[test]
+fn no_pairs_gives_an_empty_valid_output_and_exit_1() {
+    let dir = scratch("run-nopairs");
+    let (out, rep) = (dir.join("mid.step"), dir.join("report.json"));
+    let o = run("fixtures/flat_plate.step", &out, &rep, &["--t-max", "0.5"]);
+    assert_eq!(o.code, 1, "{}", o.stderr);
+    let report = read_json(&rep);
+    assert_eq!(report["patches"].as_array().unwrap().len(), 0);
+    assert_eq!(report["warnings"][0]["code"], "no_pairs");
+    assert!(out.is_file());
+}
+
+#[test]
+fn bad_input_writes_nothing() {
+    let dir = scratch("run-bad");
+    let (out, rep) = (dir.join("mid.step"), dir.join("report.json"));
+    let o = run("tests/data/truncated.step", &out, &rep, &[]);
+    assert_eq!(o.code, 2);
+    assert!(o.stderr.starts_with("midsurf: error: tests/data/truncated.step: "), "{}", o.stderr);
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "nothing written");
+}
+
+#[test]
+fn missing_output_directory_is_an_error_before_any_work() {
+    let dir = scratch("run-nodir");
+    let out = dir.join("no/such/dir/mid.step");
+    let o = run("fixtures/flat_plate.step", &out, &dir.join("r.json"), &[]);
+    assert_eq!(o.code, 2);
+    assert!(o.stderr.contains("does not exist"), "{}", o.stderr);
+}
+
+#[test]
+fn the_input_is_never_overwritten() {
+    let dir = scratch("run-self");
+    let input = dir.join("part.step");
+    std::fs::copy(root().join("fixtures/flat_plate.step"), &input).unwrap();
+    let before = std::fs::read(&input).unwrap();
+    let o = run(input.to_str().unwrap(), &input, &dir.join("r.json"), &[]);
+    assert_eq!(o.code, 2);
+    assert!(o.stderr.contains("never overwrites its input"), "{}", o.stderr);
+    assert_eq!(std::fs::read(&input).unwrap(), before);
+}
+
+#[test]
+fn two_runs_give_identical_bytes() {
+    let dir = scratch("run-twice");
+    let mut outputs = Vec::new();
+    for k in 0..2 {
+        let (out, rep) = (dir.join(format!("mid{k}.step")), dir.join(format!("r{k}.json")));
+        let o = run("fixtures/open_box_ribs.step", &out, &rep, &["--no-timings"]);
+        assert!(o.code <= 1, "{}", o.stderr);
+        let report = std::fs::read_to_string(&rep).unwrap().replace(&format!("mid{k}.step"), "mid.step");
+        outputs.push((std::fs::read(&out).unwrap(), report));
+    }
+    assert!(outputs[0].0 == outputs[1].0, "STEP bytes differ between runs");
+    assert_eq!(outputs[0].1, outputs[1].1);
+}
