@@ -78,6 +78,14 @@ def main(inp, out):
             continue
         rows.append((float(np.median(asym[m])), int(f), names.get(int(f), "?"), float(area[f]), float(np.median((up + dn)[m]))))
     rows.sort(reverse=True)
+    # Share of the output area whose named thickness agrees with the measured one within 2%.
+    agree = total = 0.0
+    for _, f, name, a, t in rows:
+        if " t=" in name:
+            named = float(name.split(" t=")[1])
+            total += a
+            agree += a if abs(t - named) <= 0.02 * named else 0.0
+    print(f"thickness within 2% of the measured median: {agree / total * 100 if total else 0:.1f}% of the named area")
     for r in rows[: int(sys.argv[3]) if len(sys.argv) > 3 else 25]:
         print(f"face {r[1]:4d}  {r[2]:<22} area {r[3]:10.2f}  mid {r[0]:.3f}  t_measured {r[4]:.3f}")
 

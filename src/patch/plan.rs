@@ -127,13 +127,32 @@ pub fn plan_patches(graph: &FaceGraph, pairing: &Pairing) -> (Vec<PatchPlan>, Ve
     (plans, notes)
 }
 
-/// Overlap-weighted mean thickness of a face's pairs, with their range.
+/// The thickness a face's patch is offset at: the overlap-weighted mean of its pairs when they agree within
+/// `SAME_THICKNESS`; across a thickness step, the mean of the level with the most overlap (a mean of two
+/// levels would be mid-way on neither). The range covers all its pairs.
 fn combined(pairs: &[&Pair]) -> Thickness {
-    let total: f64 = pairs.iter().map(|p| p.overlap_area).sum();
-    let mean = pairs.iter().map(|p| p.thickness.mean * p.overlap_area).sum::<f64>() / total;
     let min = pairs.iter().map(|p| p.thickness.min).fold(f64::INFINITY, f64::min);
     let max = pairs.iter().map(|p| p.thickness.max).fold(f64::NEG_INFINITY, f64::max);
-    Thickness { mean, min, max }
+    let mut levels: Vec<(f64, f64)> = Vec::new(); // (sum of t x overlap, overlap)
+    let mut sorted: Vec<&&Pair> = pairs.iter().collect();
+    sorted.sort_by(|a, b| a.thickness.mean.total_cmp(&b.thickness.mean));
+    let mut last = f64::NEG_INFINITY;
+    for p in sorted {
+        let t = p.thickness.mean;
+        match levels.last_mut() {
+            Some(level) if t - last <= SAME_THICKNESS * t => {
+                level.0 += t * p.overlap_area;
+                level.1 += p.overlap_area;
+            }
+            _ => levels.push((t * p.overlap_area, p.overlap_area)),
+        }
+        last = t;
+    }
+    let (sum, weight) = levels
+        .into_iter()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("a reference face belongs to at least one pair");
+    Thickness { mean: sum / weight, min, max }
 }
 
 /// A draft face goes onto the exact bisector plane with its partner of largest overlap.
