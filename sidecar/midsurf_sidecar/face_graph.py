@@ -5,7 +5,7 @@ from typing import Any
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepTools import BRepTools, BRepTools_WireExplorer
+from OCP.BRepTools import BRepTools_WireExplorer
 from OCP.Bnd import Bnd_Box
 from OCP.GCPnts import GCPnts_AbscissaPoint
 from OCP.GeomAbs import (
@@ -15,9 +15,9 @@ from OCP.GeomAbs import (
     GeomAbs_Ellipse,
     GeomAbs_Line,
 )
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_VERTEX, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_VERTEX
 from OCP.TopExp import TopExp, TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
 from .edge_convexity import classify, dihedral_angle
 from .errors import KernelError, one_line
@@ -25,7 +25,7 @@ from .face_mesh import face_mesh, mesh_shape
 from .face_normals import OutwardNormals
 from .face_point import interior_point
 from .surface_kind import describe_surface
-from .topology import IndexedShapeMap, indexed_map, surface_props, volume
+from .topology import IndexedShapeMap, face_wires, indexed_map, surface_props, volume
 from .vectors import Vec, bbox_json, norm, sub, xyz
 
 CURVE_KINDS = {
@@ -130,16 +130,8 @@ def _describe_face(
 
 def _loops(index: int, face: TopoDS_Face, edge_map: IndexedShapeMap, uses: FaceEdgeUse) -> list[list[int]]:
     """Edge ids of each wire, outer wire first; records each edge use in `uses` on the way."""
-    outer = BRepTools.OuterWire_s(face)
-    wires = [] if outer.IsNull() else [outer]
-    # Wires come out of the face with the face's orientation composed in, so edge orientations
-    # below are the ones the boundary really runs in (what the convexity test needs).
-    it = TopoDS_Iterator(face)
-    while it.More():
-        child = it.Value()
-        if child.ShapeType() == TopAbs_WIRE and not child.IsSame(outer):
-            wires.append(TopoDS.Wire(child))
-        it.Next()
+    # Edge orientations in these wires are the ones the boundary really runs in (what convexity needs).
+    wires = face_wires(face)
 
     loops = []
     for wire in wires:

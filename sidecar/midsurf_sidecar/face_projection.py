@@ -10,22 +10,21 @@ plane normal or its opposite, whichever points the way the source face's outward
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.BRepTools import BRepTools
 from OCP.Geom import Geom_Curve, Geom_Plane, Geom_TrimmedCurve
 from OCP.GeomAPI import GeomAPI_ProjectPointOnCurve
 from OCP.GeomProjLib import GeomProjLib
 from OCP.gp import gp_Dir, gp_Pln, gp_Pnt
 from OCP.Precision import Precision
 from OCP.ShapeFix import ShapeFix_Face
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_VERTEX, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_VERTEX
 from OCP.TopExp import TopExp, TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Vertex, TopoDS_Wire
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
 from .errors import OpError
 from .face_measure import diagonal
 from .face_normals import OutwardNormals
 from .face_point import interior_point
-from .topology import indexed_map
+from .topology import face_wires, indexed_map
 from .vectors import Vec, add_scaled, dot, norm, scale, sub, xyz
 
 # |cos| between the source face's normal and the plane normal below which the face is edge-on to the
@@ -59,7 +58,7 @@ def project_face(face: TopoDS_Face, origin: Vec, normal: Vec) -> TopoDS_Face:
 
 
 def _build_face(face: TopoDS_Face, projector: "_Projector", plane: gp_Pln) -> TopoDS_Face:
-    wires = [projector.wire(w) for w in _wires(face)]
+    wires = [projector.wire(w) for w in face_wires(face)]
     if not wires:
         raise OpError("the face has no boundary wire", "patch_failed")
     maker = BRepBuilderAPI_MakeFace(plane, wires[0], True)
@@ -68,19 +67,6 @@ def _build_face(face: TopoDS_Face, projector: "_Projector", plane: gp_Pln) -> To
     for hole in wires[1:]:
         maker.Add(hole)
     return maker.Face()
-
-
-def _wires(face: TopoDS_Face) -> list[TopoDS_Wire]:
-    """Outer wire first, then the others; with the face's orientation composed in."""
-    outer = BRepTools.OuterWire_s(face)
-    wires = [] if outer.IsNull() else [outer]
-    it = TopoDS_Iterator(face)
-    while it.More():
-        child = it.Value()
-        if child.ShapeType() == TopAbs_WIRE and not child.IsSame(outer):
-            wires.append(TopoDS.Wire(child))
-        it.Next()
-    return wires
 
 
 def _fixed(face: TopoDS_Face) -> TopoDS_Face:

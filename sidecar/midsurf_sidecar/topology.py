@@ -1,11 +1,12 @@
 """Indexed sub-shape maps and mass properties: the id and measurement conventions shared by all ops."""
 
 from OCP.BRepGProp import BRepGProp
+from OCP.BRepTools import BRepTools
 from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedShapeMap
 from OCP.GProp import GProp_GProps
-from OCP.TopAbs import TopAbs_ShapeEnum
+from OCP.TopAbs import TopAbs_WIRE, TopAbs_ShapeEnum
 from OCP.TopExp import TopExp
-from OCP.TopoDS import TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
 
 
 def indexed_map(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> IndexedShapeMap:
@@ -26,3 +27,17 @@ def surface_props(shape: TopoDS_Shape) -> GProp_GProps:
     props = GProp_GProps()
     BRepGProp.SurfaceProperties_s(shape, props)
     return props
+
+
+def face_wires(face: TopoDS_Face) -> list[TopoDS_Wire]:
+    """Outer wire first, then the others. Wires come out of the face with the face's orientation composed in,
+    so their edge orientations are the ones the boundary really runs in."""
+    outer = BRepTools.OuterWire_s(face)
+    wires = [] if outer.IsNull() else [outer]
+    it = TopoDS_Iterator(face)
+    while it.More():
+        child = it.Value()
+        if child.ShapeType() == TopAbs_WIRE and not child.IsSame(outer):
+            wires.append(TopoDS.Wire(child))
+        it.Next()
+    return wires
