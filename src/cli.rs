@@ -12,7 +12,6 @@ use crate::face_graph::FaceGraph;
 use crate::inspect::{self, SolidSummary};
 use crate::pairs_report::{self, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
-use crate::sidecar::Sidecar;
 
 /// Mid-surface generator for thin-walled CAD parts: a STEP solid in, a mid-surface STEP with a thickness per
 /// patch out.
@@ -127,12 +126,6 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
     }
 }
 
-/// Starts the sidecar for work on `path`, so that a broken install is reported against the file at hand.
-pub fn start_sidecar(path: &std::path::Path) -> Result<Sidecar, Error> {
-    part::check_input(path)?;
-    Sidecar::start().map_err(|error| Error::Sidecar { path: path.to_path_buf(), error })
-}
-
 #[derive(Serialize)]
 struct InspectJson<'a> {
     file: String,
@@ -146,7 +139,7 @@ struct SolidJson<'a> {
 }
 
 fn inspect_command(path: PathBuf, json: bool, mesh: bool) -> Result<Exit, Error> {
-    let mut sidecar = start_sidecar(&path)?;
+    let mut sidecar = part::start_sidecar(&path)?;
     let part = part::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: None })?;
     sidecar.shutdown();
     let file = path.display().to_string();
@@ -178,14 +171,10 @@ struct PairsJson<'a> {
 }
 
 fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exit, Error> {
-    let mut sidecar = start_sidecar(&path)?;
+    let mut sidecar = part::start_sidecar(&path)?;
     let part = part::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
     sidecar.shutdown();
-    let solids: Vec<SolidPairing> = part
-        .solids
-        .iter()
-        .map(|s| pairs_report::pair_solid(&s.graph, params, &vec![true; s.graph.faces.len()]))
-        .collect();
+    let solids: Vec<SolidPairing> = pairs_report::pair_part(&part, params);
     let file = path.display().to_string();
     let text = if json {
         serde_json::to_string_pretty(&PairsJson { file, solids: &solids }).expect("pairings always serialise") + "\n"

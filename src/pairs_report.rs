@@ -63,6 +63,11 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -
     }
 }
 
+/// Pairs every solid of a part, all faces pairable (no suppression yet).
+pub fn pair_part(part: &crate::part::Part, params: PairingParams) -> Vec<SolidPairing> {
+    part.solids.iter().map(|s| pair_solid(&s.graph, params, &vec![true; s.graph.faces.len()])).collect()
+}
+
 /// A fillet or round: a cylinder, torus or sphere whose (minor) radius is within the wall thickness.
 fn is_small_round(surface: &Surface, t_max: f64) -> bool {
     match *surface {

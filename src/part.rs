@@ -26,6 +26,12 @@ pub struct MeshRequest {
     pub tolerance: Option<f64>,
 }
 
+/// Starts the sidecar for work on `path`, so that a broken install is reported against the file at hand.
+pub fn start_sidecar(path: &Path) -> Result<Sidecar, Error> {
+    check_input(path)?;
+    Sidecar::start().map_err(|error| Error::Sidecar { path: path.to_path_buf(), error })
+}
+
 /// Problems we can see without the kernel, with a message a user can act on.
 pub fn check_input(path: &Path) -> Result<(), Error> {
     let meta = std::fs::metadata(path).map_err(|e| match e.kind() {

@@ -7,7 +7,7 @@ use crate::error::Error;
 use crate::exit::Exit;
 use crate::face_graph::FaceGraph;
 use crate::pairing::FaceRole;
-use crate::pairs_report::{pair_solid, PairingParams, SolidPairing};
+use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote};
 use crate::patch::trim::{connected_sets, find_branches};
@@ -34,7 +34,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut timings = Timings::default();
     let step_out = crate::output::Pending::new(&args.output, &args.input)?;
     let report_out = args.report.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
-    let mut sidecar = crate::cli::start_sidecar(&args.input)?;
+    let mut sidecar = part::start_sidecar(&args.input)?;
     let kernel = |e| Error::Sidecar { path: args.input.clone(), error: e };
 
     let t = Instant::now();
@@ -42,11 +42,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     timings.load = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let pairings: Vec<SolidPairing> = part
-        .solids
-        .iter()
-        .map(|s| pair_solid(&s.graph, args.params, &vec![true; s.graph.faces.len()]))
-        .collect();
+    let pairings: Vec<SolidPairing> = pair_part(&part, args.params);
     timings.pairing = t.elapsed().as_secs_f64();
 
     let mut warnings = Vec::new();
