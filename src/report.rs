@@ -6,6 +6,7 @@ use crate::face_graph::FaceId;
 use crate::pairing::estimate::TMaxEstimate;
 use crate::pairing::{PairGroup, PairKind, Thickness};
 use crate::patch::trim::Branch;
+use crate::stitch::{FreeEdges, JointReport};
 use crate::tolerance::Tolerances;
 
 /// Bumped when a field changes meaning or disappears.
@@ -21,6 +22,8 @@ pub struct Report {
     pub solids: Vec<SolidReport>,
     pub patches: Vec<PatchReport>,
     pub trimmed: Vec<TrimmedReport>,
+    /// Joints grown between patches (and open edges that found no partner), per pair of patches and kind.
+    pub joints: Vec<JointReport>,
     pub thickness_legend: Vec<LegendEntry>,
     pub result: ResultSummary,
     pub warnings: Vec<Warning>,
@@ -118,12 +121,15 @@ pub struct ResultSummary {
     pub shells: usize,
     pub valid: bool,
     pub area: f64,
+    /// Free edges of the result: on the part's rim, or open (inside the material: an unmade joint).
+    /// Absent when stitching failed.
+    pub free_edges: Option<FreeEdges>,
 }
 
 #[derive(Debug, Clone, Serialize)]
 pub struct Warning {
     /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict,
-    /// thickness_step, partial_overlap.
+    /// thickness_step, partial_overlap, joint_failed, stitch_failed, open_edges.
     pub code: &'static str,
     pub message: String,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -138,6 +144,7 @@ pub struct Timings {
     pub pairing: f64,
     pub patches: f64,
     pub trim: f64,
+    pub stitch: f64,
     pub write: f64,
     pub total: f64,
 }

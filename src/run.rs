@@ -12,6 +12,7 @@ use crate::part::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote};
 use crate::patch::trim::{connected_sets, find_branches};
 use crate::report::{self, *};
+use crate::stitch::{stitch, JointReport, PatchInfo};
 use crate::sidecar::protocol::{FaceAttributes, Fused, MadePatch, Request, Shells, Written};
 
 pub struct RunArgs {
@@ -74,14 +75,43 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy: if fuzzy.is_finite() { fuzzy } else { 0.0 } })
         .map_err(kernel)?;
     let thickness: Vec<f64> = made.iter().map(|m| m.plan.thickness.mean).collect();
-    let branches = find_branches(&fused, &thickness);
+    let mut branches = find_branches(&fused, &thickness);
     let mut keep = vec![true; fused.faces.len()];
     for b in &branches {
         keep[b.piece] = false;
     }
+    timings.trim = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let infos: Vec<PatchInfo> = made
+        .iter()
+        .map(|m| PatchInfo {
+            thickness: m.plan.thickness.mean,
+            solid: part.solids[m.solid - 1].handle,
+            reach: pairings[m.solid - 1].tolerances.joint_reach,
+        })
+        .collect();
+    let fuzzy = if fuzzy.is_finite() { fuzzy } else { 0.0 };
+    let (fused, keep, joints, free) = match stitch(&mut sidecar, &fused, &keep, &infos, fuzzy) {
+        Ok(s) => {
+            branches.extend(s.branches);
+            (s.fused, s.keep, s.joints, Some(s.free))
+        }
+        Err(e) if e.code().is_some() => {
+            warnings.push(Warning {
+                code: "stitch_failed",
+                message: format!("the patches are written unstitched: {e}"),
+                solid: None,
+                faces: Vec::new(),
+            });
+            (fused, keep, Vec::new(), None)
+        }
+        Err(e) => return Err(kernel(e)),
+    };
+    warnings.extend(joint_warnings(&joints));
     let sets = connected_sets(&fused, &keep);
     let shells: Shells = sidecar.call(&Request::MakeShells { handle: fused.handle, shells: sets.clone() }).map_err(kernel)?;
-    timings.trim = t.elapsed().as_secs_f64();
+    timings.stitch = t.elapsed().as_secs_f64();
 
     let legend = report::legend(&thickness);
     let patches = patch_reports(&made, &fused, &keep);
@@ -122,12 +152,14 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         solids: part.solids.iter().zip(&pairings).enumerate().map(|(i, (s, sp))| solid_report(i + 1, &s.graph, sp)).collect(),
         patches,
         trimmed: branches.iter().map(TrimmedReport::from_branch).collect(),
+        joints,
         thickness_legend: legend,
         result: ResultSummary {
             faces: shells.faces.len(),
             shells: sets.len(),
             valid: shells.valid,
             area: shells.faces.iter().map(|&p| fused.faces[p].area).sum(),
+            free_edges: free,
         },
         warnings,
         timings_s: args.timings.then_some(timings),
@@ -141,6 +173,28 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     }
     eprintln!("{}", summary_line(&args.output, &report));
     Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })
+}
+
+fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
+    joints
+        .iter()
+        .filter(|j| j.status != "extended")
+        .map(|j| Warning {
+            code: "joint_failed",
+            message: match j.status {
+                "no_partner" => format!(
+                    "patch {}: {} open edge(s), {:.3} mm, meet no patch within reach; left unstitched",
+                    j.patches[0], j.edges, j.length
+                ),
+                _ => format!(
+                    "{} joint of patches {:?}: the kernel could not grow {} edge(s), {:.3} mm",
+                    j.kind, j.patches, j.edges, j.length
+                ),
+            },
+            solid: None,
+            faces: Vec::new(),
+        })
+        .collect()
 }
 
 fn plan_warning(solid: usize, note: PlanNote) -> Warning {

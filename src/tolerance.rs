@@ -25,6 +25,9 @@ pub struct Tolerances {
     pub fuse: f64,
     /// A freeform pair's distance may vary by this share of its mean thickness ("nearly constant").
     pub freeform_spread: f64,
+    /// Farthest a free edge of a patch grows to meet another patch: 1.5 t_max covers a T-joint's half wall
+    /// plus a root fillet of up to a wall's thickness, and an L-joint's half wall plus overshoot.
+    pub joint_reach: f64,
 }
 
 impl Tolerances {
@@ -38,6 +41,7 @@ impl Tolerances {
             overlap_share: 0.10,
             freeform_spread: 0.15,
             fuse: t_max * 1e-4,
+            joint_reach: t_max * 1.5,
         }
     }
 }

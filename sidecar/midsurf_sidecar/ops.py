@@ -5,9 +5,11 @@ from collections.abc import Callable
 from typing import Any
 
 import OCP
-from OCP.TopAbs import TopAbs_FACE
+from OCP.BRep import BRep_Builder
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+from OCP.TopoDS import TopoDS, TopoDS_Compound
 
-from . import face_graph, mid_patch, patch_fuse, shells, step_io
+from . import edge_probe, edge_strip, face_graph, mid_patch, patch_fuse, shells, step_io
 from .args import (
     as_number,
     handle_list,
@@ -24,7 +26,7 @@ from .args import (
     require_positive,
     require_str,
 )
-from .errors import BadArgs
+from .errors import BadArgs, one_line
 from .handles import HandleStore
 from .topology import indexed_map, surface_props, volume
 
@@ -122,6 +124,67 @@ def _face_attributes(entry: Any) -> step_io.FaceAttributes:
     return step_io.FaceAttributes(require_int(entry, "face"), name, color, thickness)
 
 
+def probe_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    shape = store.get(require_handle(args))
+    face_map, edge_map = indexed_map(shape, TopAbs_FACE), indexed_map(shape, TopAbs_EDGE)
+    samples = require_int(args, "samples", 2)
+    reach, step = require_positive(args, "reach"), require_positive(args, "step")
+    targets = index_list(args.get("targets"), face_map.Size(), "target face", "the fused shape")
+    edges = []
+    for entry in require_list(args, "edges"):
+        if not isinstance(entry, dict):
+            raise BadArgs(f"each of `edges` must be an object, got {entry!r}")
+        (face_id,) = index_list([require_int(entry, "face")], face_map.Size(), "face", "the fused shape")
+        (edge_id,) = index_list([require_int(entry, "edge")], edge_map.Size(), "edge", "the fused shape")
+        solid = store.get(require_handle(entry, "solid"))
+        edges.append((TopoDS.Face(face_map.FindKey(face_id + 1)), edge_map.FindKey(edge_id + 1), solid, face_id))
+    faces = edge_probe.TargetFaces({i: TopoDS.Face(face_map.FindKey(i + 1)) for i in targets})
+    return {"edges": edge_probe.probe(edges, faces, samples, reach, step)}
+
+
+def extend_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    shape = store.get(require_handle(args))
+    face_map, edge_map = indexed_map(shape, TopAbs_FACE), indexed_map(shape, TopAbs_EDGE)
+    builder, compound = BRep_Builder(), TopoDS_Compound()
+    builder.MakeCompound(compound)
+    made_json: list[dict[str, Any]] = []
+    for j, entry in enumerate(require_list(args, "strips")):
+        if not isinstance(entry, dict):
+            raise BadArgs(f"each of `strips` must be an object, got {entry!r}")
+        (face_id,) = index_list([require_int(entry, "face")], face_map.Size(), "face", "the fused shape")
+        (edge_id,) = index_list([require_int(entry, "edge")], edge_map.Size(), "edge", "the fused shape")
+        lengths = [as_number(v, "a strip length") for v in require_list(entry, "lengths")]
+        if len(lengths) < 2 or min(lengths) <= 0.0:
+            raise BadArgs(f"strip {j}: at least 2 lengths, all positive, got {lengths}")
+        face = TopoDS.Face(face_map.FindKey(face_id + 1))
+        # One strip the kernel cannot make is that joint's failure, not the whole request's.
+        try:
+            made = edge_strip.strip(face, edge_map.FindKey(edge_id + 1), lengths)
+        except Exception as exc:  # OCCT raises its own Standard_Failure types
+            made_json.append({"area": None, "error": one_line(exc)})
+            continue
+        builder.Add(compound, made)
+        made_json.append({"area": surface_props(made).Mass(), "error": None})
+    return {"handle": store.put(compound), "strips": made_json}
+
+
+def gather(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    """A compound of chosen faces of several shapes (one patch's kept pieces and its strips)."""
+    builder, compound = BRep_Builder(), TopoDS_Compound()
+    builder.MakeCompound(compound)
+    count = 0
+    for entry in require_list(args, "parts"):
+        if not isinstance(entry, dict):
+            raise BadArgs(f"each of `parts` must be an object, got {entry!r}")
+        face_map = indexed_map(store.get(require_handle(entry)), TopAbs_FACE)
+        for face_id in index_list(entry.get("faces"), face_map.Size(), "face", "the shape"):
+            builder.Add(compound, face_map.FindKey(face_id + 1))
+            count += 1
+    if count == 0:
+        raise BadArgs("gather needs at least one face")
+    return {"handle": store.put(compound), "faces": count}
+
+
 def free(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     return {"freed": store.free(handle_list(args))}
 
@@ -134,5 +197,8 @@ OPS: dict[str, Op] = {
     "fuse": fuse,
     "make_shells": make_shells,
     "write_step": write_step,
+    "probe_edges": probe_edges,
+    "extend_edges": extend_edges,
+    "gather": gather,
     "free": free,
 }

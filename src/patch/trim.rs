@@ -4,7 +4,8 @@
 //! each patch overshoots the other by half the other's thickness. A piece of a split patch is such a branch
 //! when it touches another patch (a crossing line), is not the largest piece of its patch, and every point
 //! of its boundary lies within 0.75 x the crossing patch's thickness of the crossing lines (the overshoot is
-//! half a thickness; the margin absorbs tilted walls).
+//! half a thickness; the margin absorbs tilted walls). A piece joined to another piece of its own patch by an
+//! edge that no other patch shares is not hanging: a joint strip grown from the patch's edge stays.
 
 use glam::DVec3;
 use serde::Serialize;
@@ -52,6 +53,7 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
         }
         let mut crossing: Vec<usize> = Vec::new();
         let mut lines: Vec<&[DVec3]> = Vec::new();
+        let mut attached = false;
         for &e in &face.edges {
             let edge = &fused.edges[e];
             let others: Vec<usize> =
@@ -59,9 +61,13 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
             if !others.is_empty() {
                 crossing.extend(others);
                 lines.push(&edge.points);
+            } else if edge.faces.len() > 1 {
+                attached = true;
             }
         }
-        if crossing.is_empty() {
+        // A piece hanging on its own patch by an edge no other patch crosses (a joint strip grown from
+        // the patch's edge) continues the patch: not a branch, however narrow.
+        if crossing.is_empty() || attached {
             continue;
         }
         crossing.sort_unstable();
@@ -163,6 +169,17 @@ mod tests {
     fn a_wide_piece_is_not_a_branch() {
         // With thin crossing walls (t = 1.2) the 1 mm overshoot exceeds 0.75 x 1.2 = 0.9: kept.
         assert!(find_branches(&l_corner(), &[1.2, 1.2]).is_empty());
+    }
+
+    #[test]
+    fn a_strip_attached_to_its_patch_is_not_a_branch() {
+        // Piece 1 of patch 0 also shares a free-standing edge with piece 0 (the edge it grew from).
+        let mut fused = l_corner();
+        fused.edges.push(edge(vec![0, 1], DVec3::new(0.5, 0.0, 1.0), DVec3::new(0.5, 40.0, 1.0)));
+        fused.faces[0].edges.push(5);
+        fused.faces[1].edges.push(5);
+        let pieces: Vec<usize> = find_branches(&fused, &[2.0, 2.0]).iter().map(|b| b.piece).collect();
+        assert_eq!(pieces, vec![3]);
     }
 
     #[test]

@@ -25,6 +25,29 @@ pub enum Placement {
     Plane { origin: [f64; 3], normal: [f64; 3] },
 }
 
+/// A free edge of a fused shape, seen from its face, and the solid it should lie in.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EdgeRef {
+    pub edge: usize,
+    pub face: usize,
+    pub solid: u64,
+}
+
+/// A strip grown outward from `edge` of `face`, by `lengths[k]` at the k-th of evenly spaced samples.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StripRequest {
+    pub edge: usize,
+    pub face: usize,
+    pub lengths: Vec<f64>,
+}
+
+/// Faces (indices of MapShapes(FACE)) of the shape behind `handle`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GatherPart {
+    pub handle: u64,
+    pub faces: Vec<usize>,
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "op", content = "args", rename_all = "snake_case")]
 pub enum Request {
@@ -35,6 +58,9 @@ pub enum Request {
     MakePatch { handle: u64, faces: Vec<usize>, #[serde(flatten)] placement: Placement },
     Fuse { patches: Vec<u64>, fuzzy: f64 },
     MakeShells { handle: u64, shells: Vec<Vec<usize>> },
+    ProbeEdges { handle: u64, edges: Vec<EdgeRef>, targets: Vec<usize>, samples: usize, reach: f64, step: f64 },
+    ExtendEdges { handle: u64, strips: Vec<StripRequest> },
+    Gather { parts: Vec<GatherPart> },
     WriteStep { path: String, handle: u64, faces: Vec<FaceAttributes> },
     Free { handles: Vec<u64> },
     Shutdown {},
@@ -50,6 +76,9 @@ impl Request {
             Request::MakePatch { .. } => "make_patch",
             Request::Fuse { .. } => "fuse",
             Request::MakeShells { .. } => "make_shells",
+            Request::ProbeEdges { .. } => "probe_edges",
+            Request::ExtendEdges { .. } => "extend_edges",
+            Request::Gather { .. } => "gather",
             Request::WriteStep { .. } => "write_step",
             Request::Free { .. } => "free",
             Request::Shutdown {} => "shutdown",
@@ -168,6 +197,52 @@ pub struct Shells {
     pub valid: bool,
 }
 
+/// Where a ray along a free edge's outward direction meets a target face's support surface.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Hit {
+    pub face: usize,
+    /// Along the ray, from the edge.
+    pub distance: f64,
+    /// From the meeting point to the face itself: 0 on the face, more beyond its boundary.
+    pub gap: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct EdgeProbe {
+    pub points: Vec<glam::DVec3>,
+    pub normals: Vec<glam::DVec3>,
+    pub outward: Vec<glam::DVec3>,
+    /// Whether the point `step` past the edge is inside (or on) the solid: an open joint rather than the rim.
+    pub inside: Vec<bool>,
+    /// Per sample, nearest first.
+    pub hits: Vec<Vec<Hit>>,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Probed {
+    pub edges: Vec<EdgeProbe>,
+}
+
+/// One requested strip: made (its area; the made strips are the faces of `Extended::handle`, in request
+/// order) or not (the kernel's reason).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct MadeStrip {
+    pub area: Option<f64>,
+    pub error: Option<String>,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Extended {
+    pub handle: u64,
+    pub strips: Vec<MadeStrip>,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct Gathered {
+    pub handle: u64,
+    pub faces: usize,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -217,6 +292,25 @@ mod tests {
             (
                 Request::MakeShells { handle: 9, shells: vec![vec![0, 1], vec![2]] },
                 r#"{"id":0,"op":"make_shells","args":{"handle":9,"shells":[[0,1],[2]]}}"#,
+            ),
+            (
+                Request::ProbeEdges {
+                    handle: 9,
+                    edges: vec![EdgeRef { edge: 4, face: 1, solid: 2 }],
+                    targets: vec![0, 3],
+                    samples: 5,
+                    reach: 3.0,
+                    step: 0.5,
+                },
+                r#"{"id":0,"op":"probe_edges","args":{"handle":9,"edges":[{"edge":4,"face":1,"solid":2}],"targets":[0,3],"samples":5,"reach":3.0,"step":0.5}}"#,
+            ),
+            (
+                Request::ExtendEdges { handle: 9, strips: vec![StripRequest { edge: 4, face: 1, lengths: vec![1.0, 1.5] }] },
+                r#"{"id":0,"op":"extend_edges","args":{"handle":9,"strips":[{"edge":4,"face":1,"lengths":[1.0,1.5]}]}}"#,
+            ),
+            (
+                Request::Gather { parts: vec![GatherPart { handle: 9, faces: vec![0, 2] }] },
+                r#"{"id":0,"op":"gather","args":{"parts":[{"handle":9,"faces":[0,2]}]}}"#,
             ),
             (Request::Free { handles: vec![1, 2] }, r#"{"id":0,"op":"free","args":{"handles":[1,2]}}"#),
             (Request::Shutdown {}, r#"{"id":0,"op":"shutdown","args":{}}"#),

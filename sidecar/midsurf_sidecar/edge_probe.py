@@ -1,0 +1,179 @@
+"""`probe_edges`: what lies beyond the free edges of mid-patches, measured for Rust's joint decisions.
+
+For each free edge (an edge of one face of the fused patches) the edge is sampled at evenly spaced
+parameters, both ends included. At each sample: the point, the face's normal, the outward direction (in the
+face's tangent plane, at right angles to the edge, away from the face), whether a point a little past the edge
+lies inside the solid (a free edge inside the material is an open joint; one on the solid's boundary is the
+part's rim), and where a ray along the outward direction meets the support surfaces of the target faces.
+"""
+
+from dataclasses import dataclass
+from typing import Any
+
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+from OCP.BRepClass import BRepClass_FaceClassifier
+from OCP.BRepClass3d import BRepClass3d_SolidClassifier
+from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+from OCP.Bnd import Bnd_Box
+from OCP.Geom import Geom_Line
+from OCP.GeomAPI import GeomAPI_IntCS
+from OCP.gp import gp_Dir, gp_Lin, gp_Pnt, gp_Vec
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_IN, TopAbs_OUT, TopAbs_REVERSED
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
+
+from .errors import BadArgs, KernelError
+from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
+
+
+@dataclass(frozen=True)
+class EdgeSample:
+    point: Vec
+    normal: Vec
+    outward: Vec
+
+
+def oriented_edge(face: TopoDS_Face, edge: TopoDS_Shape) -> TopoDS_Edge:
+    """The edge as the face's boundary runs through it (orientation composed with the face's)."""
+    explorer = TopExp_Explorer(face, TopAbs_EDGE)
+    while explorer.More():
+        if explorer.Current().IsSame(edge):
+            return TopoDS.Edge(explorer.Current())
+        explorer.Next()
+    raise BadArgs("the edge is not an edge of the face")
+
+
+def sample_edge(face: TopoDS_Face, edge: TopoDS_Shape, samples: int) -> list[EdgeSample]:
+    """Samples at evenly spaced parameters of the edge's curve, in the curve's direction."""
+    if samples < 2:
+        raise BadArgs("at least 2 samples per edge")
+    oriented = oriented_edge(face, edge)
+    if BRep_Tool.Degenerated_s(oriented):
+        raise BadArgs("a degenerated edge has no outward direction")
+    curve = BRepAdaptor_Curve(oriented)
+    curve2d = BRepAdaptor_Curve2d(oriented, face)
+    surface = BRepAdaptor_Surface(face, True)
+    reversed_edge = oriented.Orientation() == TopAbs_REVERSED
+    reversed_face = face.Orientation() == TopAbs_REVERSED
+    first, last = curve.FirstParameter(), curve.LastParameter()
+    out = []
+    for k in range(samples):
+        s = first + (last - first) * k / (samples - 1)
+        point, tangent = gp_Pnt(), gp_Vec()
+        curve.D1(s, point, tangent)
+        uv = curve2d.Value(s)
+        sp, su, sv = gp_Pnt(), gp_Vec(), gp_Vec()
+        surface.D1(uv.X(), uv.Y(), sp, su, sv)
+        normal = cross(xyz(su), xyz(sv))
+        t = xyz(tangent)
+        if norm(normal) == 0.0 or norm(t) == 0.0:
+            raise KernelError(f"edge sample {k}: zero tangent or normal (a singular point)")
+        normal = scale(normal, (-1.0 if reversed_face else 1.0) / norm(normal))
+        t = scale(t, (-1.0 if reversed_edge else 1.0) / norm(t))
+        # The face lies to the left of its boundary run (looking down the normal): outward is to the right.
+        outward = cross(t, normal)
+        outward = scale(outward, 1.0 / norm(outward))
+        out.append(EdgeSample(xyz(point), normal, outward))
+    _check_side(face, out)
+    return out
+
+
+def _check_side(face: TopoDS_Face, samples: list[EdgeSample]) -> None:
+    """Guards the orientation rule: a point a little inward of the middle sample must be on the face."""
+    middle = samples[len(samples) // 2]
+    tolerance = BRep_Tool.Tolerance_s(face)
+    box = Bnd_Box()
+    BRepBndLib.Add_s(face, box, False)
+    step = max(1e-4 * norm(sub(xyz(box.CornerMax()), xyz(box.CornerMin()))), 20.0 * tolerance)
+    inner = add_scaled(middle.point, middle.outward, -step)
+    outer = add_scaled(middle.point, middle.outward, step)
+    state_in = BRepClass_FaceClassifier(face, gp_Pnt(*inner), tolerance).State()
+    state_out = BRepClass_FaceClassifier(face, gp_Pnt(*outer), tolerance).State()
+    if state_in == TopAbs_OUT and state_out == TopAbs_IN:
+        for sample in samples:
+            object.__setattr__(sample, "outward", scale(sample.outward, -1.0))
+
+
+class TargetFaces:
+    """Faces rays may meet: their support surfaces, boxes (for a quick miss) and classifiers."""
+
+    def __init__(self, faces: dict[int, TopoDS_Face]) -> None:
+        self.faces = faces
+        self.surfaces = {i: BRep_Tool.Surface_s(f) for i, f in faces.items()}
+        self.boxes = {}
+        for i, f in faces.items():
+            box = Bnd_Box()
+            BRepBndLib.Add_s(f, box, False)
+            self.boxes[i] = box
+
+    def hits(self, origin: Vec, direction: Vec, reach: float, skip: set[int]) -> list[dict[str, Any]]:
+        """Meetings of the ray with the support surfaces within (0, reach]: face, distance along the ray and
+        gap (distance from the meeting point to the face itself, 0 on the face). Nearest first."""
+        end = add_scaled(origin, direction, reach)
+        ray_box = Bnd_Box()
+        ray_box.Add(gp_Pnt(*origin))
+        ray_box.Add(gp_Pnt(*end))
+        line = Geom_Line(gp_Lin(gp_Pnt(*origin), gp_Dir(*direction)))
+        found = []
+        for i, face in self.faces.items():
+            if i in skip:
+                continue
+            box = Bnd_Box()
+            box.Add(self.boxes[i])
+            box.Enlarge(reach)
+            if box.IsOut(ray_box):
+                continue
+            meet = GeomAPI_IntCS(line, self.surfaces[i])
+            if not meet.IsDone():
+                continue
+            for k in range(1, meet.NbPoints() + 1):
+                p = xyz(meet.Point(k))
+                distance = dot(sub(p, origin), direction)
+                if 0.0 < distance <= reach:
+                    found.append({"face": i, "distance": distance, "gap": self._gap(face, p)})
+        found.sort(key=lambda h: (h["distance"], h["face"]))
+        return found
+
+    @staticmethod
+    def _gap(face: TopoDS_Face, point: Vec) -> float:
+        tolerance = BRep_Tool.Tolerance_s(face)
+        if BRepClass_FaceClassifier(face, gp_Pnt(*point), tolerance).State() == TopAbs_IN:
+            return 0.0
+        vertex = BRepBuilderAPI_MakeVertex(gp_Pnt(*point)).Vertex()
+        distance = BRepExtrema_DistShapeShape(vertex, face)
+        if not distance.IsDone():
+            raise KernelError("point-to-face distance failed")
+        return distance.Value()
+
+
+def probe(
+    edges: list[tuple[TopoDS_Face, TopoDS_Shape, TopoDS_Shape, int]],
+    targets: TargetFaces,
+    samples: int,
+    reach: float,
+    step: float,
+) -> list[dict[str, Any]]:
+    """`edges`: (face, edge, solid, own face index). One reply entry per edge."""
+    classifiers: dict[int, BRepClass3d_SolidClassifier] = {}
+    solid_ids: dict[int, int] = {}
+    out = []
+    for face, edge, solid, own in edges:
+        key = solid_ids.setdefault(id(solid), len(solid_ids))
+        if key not in classifiers:
+            classifiers[key] = BRepClass3d_SolidClassifier(solid)
+        classifier = classifiers[key]
+        entry: dict[str, list[Any]] = {"points": [], "normals": [], "outward": [], "inside": [], "hits": []}
+        for sample in sample_edge(face, edge, samples):
+            beyond = add_scaled(sample.point, sample.outward, step)
+            classifier.Perform(gp_Pnt(*beyond), 1e-7)
+            entry["points"].append(list(sample.point))
+            entry["normals"].append(list(sample.normal))
+            entry["outward"].append(list(sample.outward))
+            entry["inside"].append(classifier.State() != TopAbs_OUT)
+            entry["hits"].append(targets.hits(sample.point, sample.outward, reach, {own}))
+        out.append(entry)
+    return out
+

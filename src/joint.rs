@@ -1,0 +1,183 @@
+//! Joints (Sheen et al. 5.4): what to do with each free edge of the mid-patches, decided from the sidecar's
+//! probes (see `probe_edges` in sidecar/PROTOCOL.md).
+//!
+//! A free edge whose outside lies outside the solid is the part's rim and stays free. One whose outside lies in
+//! the material is an open joint: a wall meets another there. Its partner is the patch met by rays cast from
+//! the edge along the patch's tangent plane:
+//! - on the partner's face: a T-joint (the edge grows up to the partner, which is then split along it);
+//! - on the partner's support surface past its boundary: an L-joint (the partner's own open edge grows toward
+//!   this one; both overshoot a little and the crossing trims the overshoot, as for the offset patches).
+//!
+//! Every strip overshoots its partner by [`OVERSHOOT`] of the partner's thickness so the fuse always finds a
+//! crossing; the overshoot is then a branch under the trimming limit (0.75 t) and is dropped.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::sidecar::protocol::{EdgeProbe, Hit};
+
+/// Overshoot past the partner, as a share of the partner's thickness.
+pub const OVERSHOOT: f64 = 0.25;
+/// How far past a free edge the inside-the-material test looks, as a share of the edge's patch thickness: far
+/// enough to leave a thickness face behind, not so far as to cross a thin wall.
+pub const PROBE_STEP: f64 = 0.25;
+/// Samples per free edge (ends included): enough to follow a curved edge or a tilted partner.
+pub const SAMPLES: usize = 5;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JointKind {
+    /// The edge meets the partner's face.
+    T,
+    /// The edge meets the partner's support past its boundary: both grow and cross.
+    L,
+}
+
+/// A strip to grow from a free edge up to (and a little past) a partner patch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Extension {
+    pub kind: JointKind,
+    pub partner: usize,
+    /// Per sample of the edge: distance to the partner plus the overshoot.
+    pub lengths: Vec<f64>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Verdict {
+    /// On the part's boundary: stays free.
+    Rim,
+    /// An open joint with its extension.
+    Extend(Extension),
+    /// An open joint with no patch within reach.
+    Unresolved,
+}
+
+/// Decides one free edge of patch `patch`. `patch_of[f]` is the patch of fused face f, `thickness[p]` of patch p.
+pub fn decide(patch: usize, probe: &EdgeProbe, patch_of: &[usize], thickness: &[f64], reach: f64) -> Verdict {
+    let inside = probe.inside.iter().filter(|&&b| b).count();
+    if 2 * inside <= probe.inside.len() {
+        return Verdict::Rim;
+    }
+    let usable = |h: &&Hit| patch_of[h.face] != patch && h.gap <= reach && h.distance <= reach;
+    let score = |h: &Hit| h.distance + h.gap;
+    // Each sample votes for the patch of its best meeting; ties go to the lowest patch.
+    let mut votes: BTreeMap<usize, usize> = BTreeMap::new();
+    for hits in &probe.hits {
+        if let Some(best) = hits.iter().filter(usable).min_by(|a, b| score(a).total_cmp(&score(b))) {
+            *votes.entry(patch_of[best.face]).or_default() += 1;
+        }
+    }
+    let Some((&partner, _)) = votes.iter().max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0))) else {
+        return Verdict::Unresolved;
+    };
+    let overshoot = OVERSHOOT * thickness[partner];
+    let mut on_face = 0;
+    let mut met = 0;
+    let reached: Vec<Option<f64>> = probe
+        .hits
+        .iter()
+        .map(|hits| {
+            let best = hits
+                .iter()
+                .filter(usable)
+                .filter(|h| patch_of[h.face] == partner)
+                .min_by(|a, b| score(a).total_cmp(&score(b)))?;
+            met += 1;
+            if best.gap <= overshoot {
+                on_face += 1;
+            }
+            Some(best.distance + overshoot)
+        })
+        .collect();
+    let kind = if 2 * on_face > met { JointKind::T } else { JointKind::L };
+    Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached) })
+}
+
+/// Missing values linearly interpolated between their known neighbours, held constant past the ends.
+fn fill_gaps(values: &[Option<f64>]) -> Vec<f64> {
+    let known: Vec<(usize, f64)> = values.iter().enumerate().filter_map(|(i, v)| v.map(|v| (i, v))).collect();
+    (0..values.len())
+        .map(|i| {
+            let before = known.iter().rev().find(|(j, _)| *j <= i);
+            let after = known.iter().find(|(j, _)| *j >= i);
+            match (before, after) {
+                (Some(&(a, va)), Some(&(b, vb))) if b > a => va + (vb - va) * (i - a) as f64 / (b - a) as f64,
+                (Some(&(_, v)), _) | (None, Some(&(_, v))) => v,
+                (None, None) => unreachable!("decide only fills edges with at least one meeting"),
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    fn probe(inside: &[bool], hits: Vec<Vec<Hit>>) -> EdgeProbe {
+        let n = inside.len();
+        EdgeProbe {
+            points: vec![DVec3::ZERO; n],
+            normals: vec![DVec3::X; n],
+            outward: vec![-DVec3::Z; n],
+            inside: inside.to_vec(),
+            hits,
+        }
+    }
+
+    fn hit(face: usize, distance: f64, gap: f64) -> Hit {
+        Hit { face, distance, gap }
+    }
+
+    // Faces 0, 1 belong to patch 0 (the base), face 2 to patch 1 (the rib), face 3 to patch 2 (a far wall).
+    const PATCH_OF: [usize; 4] = [0, 0, 1, 2];
+    const THICKNESS: [f64; 3] = [2.0, 1.0, 1.0];
+
+    #[test]
+    fn an_edge_whose_outside_is_outside_the_solid_is_rim() {
+        let p = probe(&[false, false, true], vec![vec![hit(0, 1.0, 0.0)]; 3]);
+        assert_eq!(decide(1, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Rim);
+    }
+
+    #[test]
+    fn a_rib_edge_meeting_the_base_face_is_a_t_joint_with_overshoot() {
+        let p = probe(&[true; 3], vec![vec![hit(0, 1.0, 0.0)], vec![hit(1, 1.0, 0.0)], vec![hit(1, 1.0, 0.0), hit(3, 2.0, 0.0)]]);
+        let Verdict::Extend(e) = decide(1, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
+        assert_eq!(e.kind, JointKind::T);
+        assert_eq!(e.partner, 0);
+        assert_eq!(e.lengths, vec![1.5; 3]);
+    }
+
+    #[test]
+    fn meeting_the_support_past_the_boundary_is_an_l_joint() {
+        let p = probe(&[true; 2], vec![vec![hit(2, 0.5, 0.5)], vec![hit(2, 0.7, 0.5)]]);
+        let Verdict::Extend(e) = decide(0, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
+        assert_eq!(e.kind, JointKind::L);
+        assert_eq!(e.partner, 1);
+        assert_eq!(e.lengths, vec![0.75, 0.95]);
+    }
+
+    #[test]
+    fn own_patch_and_out_of_reach_meetings_do_not_count() {
+        let p = probe(&[true; 2], vec![vec![hit(1, 0.5, 0.0), hit(3, 3.5, 0.0)], vec![hit(3, 1.0, 4.0)]]);
+        assert_eq!(decide(0, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Unresolved);
+    }
+
+    #[test]
+    fn the_nearest_meeting_wins_and_samples_without_one_are_interpolated() {
+        let p = probe(
+            &[true; 5],
+            vec![vec![hit(2, 1.0, 0.0)], vec![], vec![hit(3, 0.5, 2.0), hit(2, 2.0, 0.0)], vec![hit(2, 3.0, 0.0)], vec![]],
+        );
+        let Verdict::Extend(e) = decide(0, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
+        assert_eq!(e.partner, 1);
+        // Sample 2's best meeting is patch 2's support (0.5 + gap 2 = 2.5 > 2.0): patch 1 there too.
+        assert_eq!(e.lengths, vec![1.25, 1.75, 2.25, 3.25, 3.25]);
+    }
+
+    #[test]
+    fn gaps_fill_by_interpolation_and_holding() {
+        assert_eq!(fill_gaps(&[None, Some(1.0), None, Some(3.0), None]), vec![1.0, 1.0, 2.0, 3.0, 3.0]);
+    }
+}

@@ -1,0 +1,215 @@
+//! Extend and stitch (Sheen et al. 5.4): grow the open free edges of the trimmed patches up to their partners,
+//! fuse again so every joint becomes a shared edge, and trim the overshoot.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::joint::{self, JointKind, Verdict};
+use crate::patch::trim::{find_branches, Branch};
+use crate::sidecar::protocol::{EdgeProbe, EdgeRef, Extended, Fused, Gathered, GatherPart, Probed, Request, StripRequest};
+use crate::sidecar::{Sidecar, SidecarError};
+
+/// What one patch brings: its thickness, the handle of its solid and how far its joints may reach.
+#[derive(Debug, Clone, Copy)]
+pub struct PatchInfo {
+    pub thickness: f64,
+    pub solid: u64,
+    pub reach: f64,
+}
+
+/// The joints made between two patches (or tried from one), summed over their edges.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JointReport {
+    /// 1-based patch ids, sorted; one id for an edge that found no partner.
+    pub patches: Vec<usize>,
+    pub kind: &'static str,
+    pub status: &'static str,
+    pub edges: usize,
+    pub length: f64,
+}
+
+/// Free edges of the result that still lie in the material (open joints), and the part's rim.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct FreeEdges {
+    pub rim_edges: usize,
+    pub rim_length: f64,
+    pub open_edges: usize,
+    pub open_length: f64,
+}
+
+pub struct Stitched {
+    pub fused: Fused,
+    pub keep: Vec<bool>,
+    /// Branches dropped in this pass (the overshoot of the strips, and crossings they made).
+    pub branches: Vec<Branch>,
+    pub joints: Vec<JointReport>,
+    pub strips: usize,
+    pub free: FreeEdges,
+}
+
+/// Free edges of the kept faces: (edge, its one kept face), in edge order.
+fn free_edges(fused: &Fused, keep: &[bool]) -> Vec<(usize, usize)> {
+    fused
+        .edges
+        .iter()
+        .enumerate()
+        .filter_map(|(e, edge)| {
+            let kept: Vec<usize> = edge.faces.iter().copied().filter(|&f| keep[f]).collect();
+            (kept.len() == 1 && edge.length > 0.0).then(|| (e, kept[0]))
+        })
+        .collect()
+}
+
+fn probe(
+    sidecar: &mut Sidecar,
+    fused: &Fused,
+    free: &[(usize, usize)],
+    targets: Vec<usize>,
+    patches: &[PatchInfo],
+) -> Result<Vec<EdgeProbe>, SidecarError> {
+    if free.is_empty() {
+        return Ok(Vec::new());
+    }
+    let edges = free.iter().map(|&(edge, face)| EdgeRef { edge, face, solid: patches[fused.faces[face].patch].solid }).collect();
+    let reach = patches.iter().map(|p| p.reach).fold(0.0, f64::max);
+    let step = joint::PROBE_STEP * patches.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
+    let probed: Probed = sidecar.call(&Request::ProbeEdges {
+        handle: fused.handle,
+        edges,
+        targets,
+        samples: joint::SAMPLES,
+        reach,
+        step,
+    })?;
+    Ok(probed.edges)
+}
+
+/// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again.
+pub fn stitch(
+    sidecar: &mut Sidecar,
+    fused: &Fused,
+    keep: &[bool],
+    patches: &[PatchInfo],
+    fuzzy: f64,
+) -> Result<Stitched, SidecarError> {
+    let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
+    let patch_of: Vec<usize> = fused.faces.iter().map(|f| f.patch).collect();
+    let free = free_edges(fused, keep);
+    let kept: Vec<usize> = (0..fused.faces.len()).filter(|&f| keep[f]).collect();
+    let probes = probe(sidecar, fused, &free, kept.clone(), patches)?;
+
+    // (patch, strip, joint key) per extended edge; joint keys of the edges with no partner.
+    let mut planned: Vec<(usize, StripRequest, JointKey)> = Vec::new();
+    let mut tally = JointTally::default();
+    for (&(edge, face), p) in free.iter().zip(&probes) {
+        let patch = patch_of[face];
+        let length = fused.edges[edge].length;
+        match joint::decide(patch, p, &patch_of, &thickness, patches[patch].reach) {
+            Verdict::Rim => {}
+            Verdict::Unresolved => tally.add((vec![patch + 1], "none", "no_partner"), length),
+            Verdict::Extend(x) => {
+                let mut ids = vec![patch + 1, x.partner + 1];
+                ids.sort_unstable();
+                planned.push((patch, StripRequest { edge, face, lengths: x.lengths }, (ids, kind_name(x.kind), "extended")));
+            }
+        }
+    }
+    if planned.is_empty() {
+        let free = classify_free(sidecar, fused, keep, patches)?;
+        return Ok(Stitched { fused: fused.clone(), keep: keep.to_vec(), branches: Vec::new(), joints: tally.reports(), strips: 0, free });
+    }
+    let extended: Extended =
+        sidecar.call(&Request::ExtendEdges { handle: fused.handle, strips: planned.iter().map(|(_, s, _)| s.clone()).collect() })?;
+    // Index of each made strip among the faces of `extended.handle`.
+    let mut strips: Vec<(usize, usize)> = Vec::new();
+    for ((patch, request, key), made) in planned.into_iter().zip(&extended.strips) {
+        let length = fused.edges[request.edge].length;
+        if made.area.is_some() {
+            strips.push((patch, strips.len()));
+            tally.add(key, length);
+        } else {
+            tally.add((key.0, key.1, "kernel_failed"), length);
+        }
+    }
+    let joints = tally.reports();
+
+    // One argument per patch: its kept pieces and its strips.
+    let mut order: Vec<usize> = Vec::new();
+    let mut handles = Vec::new();
+    for k in 0..patches.len() {
+        let pieces: Vec<usize> = kept.iter().copied().filter(|&f| patch_of[f] == k).collect();
+        let own: Vec<usize> = strips.iter().filter(|(p, _)| *p == k).map(|&(_, j)| j).collect();
+        let mut parts = Vec::new();
+        if !pieces.is_empty() {
+            parts.push(GatherPart { handle: fused.handle, faces: pieces });
+        }
+        if !own.is_empty() {
+            parts.push(GatherPart { handle: extended.handle, faces: own });
+        }
+        if parts.is_empty() {
+            continue;
+        }
+        let gathered: Gathered = sidecar.call(&Request::Gather { parts })?;
+        order.push(k);
+        handles.push(gathered.handle);
+    }
+    let mut again: Fused = sidecar.call(&Request::Fuse { patches: handles, fuzzy })?;
+    for face in &mut again.faces {
+        face.patch = order[face.patch];
+    }
+    let branches = find_branches(&again, &thickness);
+    let mut keep = vec![true; again.faces.len()];
+    for b in &branches {
+        keep[b.piece] = false;
+    }
+    let free = classify_free(sidecar, &again, &keep, patches)?;
+    Ok(Stitched { fused: again, keep, branches, joints, strips: strips.len(), free })
+}
+
+/// Sorts the free edges of the result into rim and open joints (the inside test of `decide`).
+fn classify_free(sidecar: &mut Sidecar, fused: &Fused, keep: &[bool], patches: &[PatchInfo]) -> Result<FreeEdges, SidecarError> {
+    let free = free_edges(fused, keep);
+    let probes = probe(sidecar, fused, &free, Vec::new(), patches)?;
+    let mut out = FreeEdges::default();
+    for (&(edge, _), p) in free.iter().zip(&probes) {
+        let length = fused.edges[edge].length;
+        if 2 * p.inside.iter().filter(|&&b| b).count() > p.inside.len() {
+            out.open_edges += 1;
+            out.open_length += length;
+        } else {
+            out.rim_edges += 1;
+            out.rim_length += length;
+        }
+    }
+    Ok(out)
+}
+
+/// Patch ids (sorted), kind, status.
+type JointKey = (Vec<usize>, &'static str, &'static str);
+
+/// Edges and length per joint key, in key order (deterministic).
+#[derive(Default)]
+struct JointTally(BTreeMap<JointKey, (usize, f64)>);
+
+impl JointTally {
+    fn add(&mut self, key: JointKey, length: f64) {
+        let entry = self.0.entry(key).or_default();
+        entry.0 += 1;
+        entry.1 += length;
+    }
+
+    fn reports(&self) -> Vec<JointReport> {
+        self.0
+            .iter()
+            .map(|((patches, kind, status), &(edges, length))| JointReport { patches: patches.clone(), kind, status, edges, length })
+            .collect()
+    }
+}
+
+fn kind_name(kind: JointKind) -> &'static str {
+    match kind {
+        JointKind::T => "t",
+        JointKind::L => "l",
+    }
+}
