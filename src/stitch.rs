@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use crate::joint::{self, JointKind, Verdict};
 use crate::patch::trim::{find_branches, Branch};
-use crate::sidecar::protocol::{EdgeProbe, EdgeRef, Extended, Fused, Gathered, GatherPart, Probed, Request, StripRequest};
+use crate::sidecar::protocol::{CornerRequest, EdgeProbe, EdgeRef, Extended, Fused, Gathered, GatherPart, Probed, Request, StripRequest};
 use crate::sidecar::{Sidecar, SidecarError};
 
 /// What one patch brings: its thickness, the handle of its solid and how far its joints may reach.
@@ -99,8 +99,8 @@ pub fn stitch(
     let kept: Vec<usize> = (0..fused.faces.len()).filter(|&f| keep[f]).collect();
     let probes = probe(sidecar, fused, &free, kept.clone(), patches)?;
 
-    // (patch, strip, joint key) per extended edge; joint keys of the edges with no partner.
-    let mut planned: Vec<(usize, StripRequest, JointKey)> = Vec::new();
+    // (patch, strip, joint key, probe) per extended edge; joint keys of the edges with no partner.
+    let mut planned: Vec<(usize, StripRequest, JointKey, &EdgeProbe)> = Vec::new();
     let mut tally = JointTally::default();
     for (&(edge, face), p) in free.iter().zip(&probes) {
         let patch = patch_of[face];
@@ -111,7 +111,7 @@ pub fn stitch(
             Verdict::Extend(x) => {
                 let mut ids = vec![patch + 1, x.partner + 1];
                 ids.sort_unstable();
-                planned.push((patch, StripRequest { edge, face, lengths: x.lengths }, (ids, kind_name(x.kind), "extended")));
+                planned.push((patch, StripRequest { edge, face, lengths: x.lengths }, (ids, kind_name(x.kind), "extended"), p));
             }
         }
     }
@@ -119,17 +119,27 @@ pub fn stitch(
         let free = classify_free(sidecar, fused, keep, patches)?;
         return Ok(Stitched { fused: fused.clone(), keep: keep.to_vec(), branches: Vec::new(), joints: tally.reports(), strips: 0, free });
     }
-    let extended: Extended =
-        sidecar.call(&Request::ExtendEdges { handle: fused.handle, strips: planned.iter().map(|(_, s, _)| s.clone()).collect() })?;
-    // Index of each made strip among the faces of `extended.handle`.
+    let corners = corners(&planned, fuzzy);
+    let extended: Extended = sidecar.call(&Request::ExtendEdges {
+        handle: fused.handle,
+        strips: planned.iter().map(|(_, s, _, _)| s.clone()).collect(),
+        corners: corners.iter().map(|(_, c)| c.clone()).collect(),
+    })?;
+    // (patch, index among the faces of `extended.handle`) of each made strip and corner.
     let mut strips: Vec<(usize, usize)> = Vec::new();
-    for ((patch, request, key), made) in planned.into_iter().zip(&extended.strips) {
+    for ((patch, request, key, _), made) in planned.into_iter().zip(&extended.strips) {
         let length = fused.edges[request.edge].length;
         if made.area.is_some() {
             strips.push((patch, strips.len()));
             tally.add(key, length);
         } else {
             tally.add((key.0, key.1, "kernel_failed"), length);
+        }
+    }
+    let made_strips = strips.len();
+    for (&(patch, _), made) in corners.iter().zip(&extended.corners) {
+        if made.area.is_some() {
+            strips.push((patch, strips.len()));
         }
     }
     let joints = tally.reports();
@@ -150,7 +160,7 @@ pub fn stitch(
         if parts.is_empty() {
             continue;
         }
-        let gathered: Gathered = sidecar.call(&Request::Gather { parts })?;
+        let gathered: Gathered = sidecar.call(&Request::Gather { parts, unify: Some(fuzzy) })?;
         order.push(k);
         handles.push(gathered.handle);
     }
@@ -164,7 +174,41 @@ pub fn stitch(
         keep[b.piece] = false;
     }
     let free = classify_free(sidecar, &again, &keep, patches)?;
-    Ok(Stitched { fused: again, keep, branches, joints, strips: strips.len(), free })
+    Ok(Stitched { fused: again, keep, branches, joints, strips: made_strips, free })
+}
+
+/// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
+/// and end both growing into the walls they meet): a quad v, a, c, b fills it, where a and b are the strips'
+/// far corners over v and c = a + b - v. Edges continuing each other (outward directions within 10 degrees)
+/// need none; at a reflex corner the strips overlap instead.
+fn corners(planned: &[(usize, StripRequest, JointKey, &EdgeProbe)], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
+    let same_point = (fuzzy * 10.0).max(1e-9);
+    let continuing = 10f64.to_radians().cos();
+    // (point, direction along the edge into that end, outward, length, normal) at both ends of a strip.
+    let ends = |s: &StripRequest, p: &EdgeProbe| {
+        let n = p.points.len();
+        [
+            (p.points[0], (p.points[0] - p.points[1]).normalize_or_zero(), p.outward[0], s.lengths[0], p.normals[0]),
+            (p.points[n - 1], (p.points[n - 1] - p.points[n - 2]).normalize_or_zero(), p.outward[n - 1], s.lengths[n - 1], p.normals[n - 1]),
+        ]
+    };
+    let mut out = Vec::new();
+    for (i, (patch, a, _, pa)) in planned.iter().enumerate() {
+        for (b, pb) in planned[i + 1..].iter().filter(|(_, b, _, _)| b.face == a.face).map(|(_, b, _, p)| (b, p)) {
+            for &(va, along_a, out_a, len_a, normal) in &ends(a, pa) {
+                for &(vb, along_b, out_b, len_b, _) in &ends(b, pb) {
+                    let convex = out_b.dot(along_a) > 0.0 && out_a.dot(along_b) > 0.0;
+                    if va.distance(vb) > same_point || out_a.dot(out_b) > continuing || !convex {
+                        continue;
+                    }
+                    let far_a = va + out_a * len_a;
+                    let far_b = va + out_b * len_b;
+                    out.push((*patch, CornerRequest { points: [va, far_a, far_a + far_b - va, far_b], normal }));
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Sorts the free edges of the result into rim and open joints (the inside test of `decide`).

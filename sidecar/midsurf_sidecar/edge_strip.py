@@ -6,31 +6,50 @@ for a straight edge reaching a plane, twisted where the lengths vary along a cur
 coincides with the patch's edge, so the next `fuse` shares it.
 """
 
-from OCP.BRepAdaptor import BRepAdaptor_Curve
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepFill import BRepFill
 from OCP.GC import GC_MakeSegment
-from OCP.GeomAbs import GeomAbs_Line
+from OCP.GeomAbs import GeomAbs_Line, GeomAbs_Plane
 from OCP.GeomAPI import GeomAPI_Interpolate
-from OCP.gp import gp_Pnt
+from OCP.gp import gp_Pln, gp_Pnt
 from OCP.collections import HArray1_gp_Pnt
 from OCP.TopAbs import TopAbs_FORWARD
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
 from .edge_probe import sample_edge
 from .errors import KernelError
-from .vectors import Vec, add_scaled, cross, norm, sub
+from .face_measure import diagonal
+from .face_normals import OutwardNormals
+from .face_point import interior_point
+from .vectors import Vec, add_scaled, cross, dot, norm, sub
 
 
 def strip(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float]) -> TopoDS_Face:
+    """Oriented like the patch face (normals agree at the middle of the edge), so the faces of one patch can
+    be merged and shells stay consistently oriented."""
     samples = sample_edge(face, edge, len(lengths))
+    made = _strip(face, edge, samples, lengths)
+    return _oriented_like(made, samples[len(samples) // 2].normal)
+
+
+def _oriented_like(made: TopoDS_Face, normal: Vec) -> TopoDS_Face:
+    point, own = interior_point(OutwardNormals(made), diagonal(made))
+    return made if dot(own, normal) >= 0.0 else TopoDS.Face(made.Reversed())
+
+
+def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[float]) -> TopoDS_Face:
     far = [add_scaled(s.point, s.outward, length) for s, length in zip(samples, lengths)]
     # Forward, so the ruled surface joins the near edge's first vertex to the far curve's first point.
     near = TopoDS.Edge(edge.Oriented(TopAbs_FORWARD))
     near_curve = BRepAdaptor_Curve(near)
     tolerance = 1e-6 * max(norm(sub(far[-1], far[0])), max(lengths))
     if near_curve.GetType() == GeomAbs_Line and _collinear(far, tolerance):
+        plane = _plane_of(face)
+        if plane is not None and all(abs(plane.Distance(gp_Pnt(*p))) <= tolerance for p in far):
+            # On the patch's own plane: a plane face, so unify_same_domain can merge it into the patch.
+            return _planar_quad(plane, [samples[0].point, samples[-1].point, far[-1], far[0]])
         far_curve = GC_MakeSegment(gp_Pnt(*far[0]), gp_Pnt(*far[-1])).Value()
     else:
         points = HArray1_gp_Pnt(1, len(far))
@@ -45,6 +64,47 @@ def strip(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float]) -> TopoDS
     result = BRepFill.Face_s(near, far_edge)
     if result.IsNull() or not BRepCheck_Analyzer(result).IsValid():
         raise KernelError("the strip face is not valid")
+    return result
+
+
+def _plane_of(face: TopoDS_Face) -> gp_Pln | None:
+    surface = BRepAdaptor_Surface(face, False)
+    return surface.Plane() if surface.GetType() == GeomAbs_Plane else None
+
+
+def _planar_quad(plane: gp_Pln, points: list[Vec]) -> TopoDS_Face:
+    polygon = BRepBuilderAPI_MakePolygon()
+    for p in points:
+        polygon.Add(gp_Pnt(*p))
+    polygon.Close()
+    maker = BRepBuilderAPI_MakeFace(plane, polygon.Wire(), True)
+    if not maker.IsDone():
+        raise KernelError("the planar strip could not be made")
+    return maker.Face()
+
+
+def corner(points: list[Vec], normal: Vec) -> TopoDS_Face:
+    """The quad v, a, c, b filling the notch between two strips grown from the edges meeting at a corner v of
+    a patch: a and b are their far corners over v, c closes the parallelogram. Plane if flat, else ruled
+    between v->a and b->c; oriented along the patch's `normal` at v."""
+    return _oriented_like(_corner(points), normal)
+
+
+def _corner(points: list[Vec]) -> TopoDS_Face:
+    v, a, c, b = points
+    polygon = BRepBuilderAPI_MakePolygon()
+    for p in points:
+        polygon.Add(gp_Pnt(*p))
+    polygon.Close()
+    planar = BRepBuilderAPI_MakeFace(polygon.Wire(), True)
+    if planar.IsDone():
+        # A plane face where the quad is flat (always, on a planar patch): unify_same_domain merges it.
+        return planar.Face()
+    first = BRepBuilderAPI_MakeEdge(gp_Pnt(*v), gp_Pnt(*a)).Edge()
+    second = BRepBuilderAPI_MakeEdge(gp_Pnt(*b), gp_Pnt(*c)).Edge()
+    result = BRepFill.Face_s(first, second)
+    if result.IsNull() or not BRepCheck_Analyzer(result).IsValid():
+        raise KernelError("the corner face is not valid")
     return result
 
 

@@ -9,7 +9,7 @@ from OCP.BRep import BRep_Builder
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Compound
 
-from . import edge_probe, edge_strip, face_graph, mid_patch, patch_fuse, shells, step_io
+from . import edge_probe, edge_strip, face_graph, mid_patch, patch_fuse, patch_unify, shells, step_io
 from .args import (
     as_number,
     handle_list,
@@ -165,24 +165,42 @@ def extend_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
             continue
         builder.Add(compound, made)
         made_json.append({"area": surface_props(made).Mass(), "error": None})
-    return {"handle": store.put(compound), "strips": made_json}
+    corners_json: list[dict[str, Any]] = []
+    for j, entry in enumerate(args.get("corners", [])):
+        if not isinstance(entry, dict) or not isinstance(entry.get("points"), list) or len(entry["points"]) != 4:
+            raise BadArgs(f"corner {j} must be {{points: [4 points], normal}}, got {entry!r}")
+        points = [require_point({"p": p}, "p") for p in entry["points"]]
+        normal = require_direction(entry, "normal")
+        try:
+            made = edge_strip.corner(points, normal)
+        except Exception as exc:  # OCCT raises its own Standard_Failure types
+            corners_json.append({"area": None, "error": one_line(exc)})
+            continue
+        builder.Add(compound, made)
+        corners_json.append({"area": surface_props(made).Mass(), "error": None})
+    return {"handle": store.put(compound), "strips": made_json, "corners": corners_json}
 
 
 def gather(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     """A compound of chosen faces of several shapes (one patch's kept pieces and its strips)."""
-    builder, compound = BRep_Builder(), TopoDS_Compound()
-    builder.MakeCompound(compound)
-    count = 0
+    faces = []
     for entry in require_list(args, "parts"):
         if not isinstance(entry, dict):
             raise BadArgs(f"each of `parts` must be an object, got {entry!r}")
         face_map = indexed_map(store.get(require_handle(entry)), TopAbs_FACE)
         for face_id in index_list(entry.get("faces"), face_map.Size(), "face", "the shape"):
-            builder.Add(compound, face_map.FindKey(face_id + 1))
-            count += 1
-    if count == 0:
+            faces.append(face_map.FindKey(face_id + 1))
+    if not faces:
         raise BadArgs("gather needs at least one face")
-    return {"handle": store.put(compound), "faces": count}
+    unify = args.get("unify")
+    if unify is not None and len(faces) > 1:
+        shape = patch_unify.unify(faces, as_number(unify, "the unify tolerance"))
+    else:
+        builder, shape = BRep_Builder(), TopoDS_Compound()
+        builder.MakeCompound(shape)
+        for face in faces:
+            builder.Add(shape, face)
+    return {"handle": store.put(shape), "faces": indexed_map(shape, TopAbs_FACE).Size()}
 
 
 def free(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:

@@ -4,16 +4,20 @@ share their crossing edges; each face of the result traced back to its patch thr
 from typing import Any
 
 from OCP.BOPAlgo import BOPAlgo_Builder
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Splitter
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+from OCP.GeomAbs import GeomAbs_Line
+from OCP.collections import List_TopoDS_Shape
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.GCPnts import GCPnts_AbscissaPoint
 from OCP.Message import Message_Fail
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_INTERNAL
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Shape
 
 from .errors import KernelError, one_line
-from .face_measure import measure
+from .face_measure import diagonal, measure
 from .topology import IndexedShapeMap, indexed_map
 from .vectors import xyz
 
@@ -58,7 +62,62 @@ def fuse(patches: list[TopoDS_Shape], fuzzy: float) -> tuple[TopoDS_Shape, dict[
         raise KernelError(f"BOPAlgo_Builder failed on {inputs.Size()} faces: {_alerts(builder)}")
     fused = builder.Shape()
     patch_of = _trace_patches(builder, inputs, input_patch, indexed_map(fused, TopAbs_FACE))
+    fused, patch_of = _split_at_internal_edges(fused, patch_of, fuzzy)
     return fused, _describe(fused, patch_of)
+
+
+def _split_at_internal_edges(fused: TopoDS_Shape, patch_of: list[int], fuzzy: float) -> tuple[TopoDS_Shape, list[int]]:
+    """A T-joint that stops inside a face (a rib ending part way up a wall) is an INTERNAL edge of that face,
+    which STEP cannot carry: the face is split along the edge's line, through to its boundary, so the joint is
+    a boundary edge shared by the pieces and the stem. Straight edges only; the others stay internal."""
+    face_map = indexed_map(fused, TopAbs_FACE)
+    tools = []
+    for i in range(face_map.Size()):
+        face = TopoDS.Face(face_map.FindKey(i + 1))
+        explorer = TopExp_Explorer(face, TopAbs_EDGE)
+        while explorer.More():
+            edge = TopoDS.Edge(explorer.Current())
+            explorer.Next()
+            if edge.Orientation() != TopAbs_INTERNAL or BRep_Tool.Degenerated_s(edge):
+                continue
+            curve = BRepAdaptor_Curve(edge)
+            if curve.GetType() != GeomAbs_Line:
+                continue
+            reach = diagonal(face)
+            first, last = curve.FirstParameter() - reach, curve.LastParameter() + reach
+            tools.append(BRepBuilderAPI_MakeEdge(curve.Line(), first, last).Edge())
+    if not tools:
+        return fused, patch_of
+    splitter = BRepAlgoAPI_Splitter()
+    arguments, tool_list = List_TopoDS_Shape(), List_TopoDS_Shape()
+    arguments.Append(fused)
+    for tool in tools:
+        tool_list.Append(tool)
+    splitter.SetArguments(arguments)
+    splitter.SetTools(tool_list)
+    splitter.SetFuzzyValue(fuzzy)
+    splitter.SetNonDestructive(True)
+    splitter.Build()
+    if not splitter.IsDone():
+        return fused, patch_of  # the joints stay internal edges: no worse than before
+    result = splitter.Shape()
+    result_map = indexed_map(result, TopAbs_FACE)
+    split_patch: list[int | None] = [None] * result_map.Size()
+    for i in range(face_map.Size()):
+        face = face_map.FindKey(i + 1)
+        images = splitter.Modified(face)
+        for image in images if images.Size() else [face]:
+            index = result_map.FindIndex(image) - 1
+            if index >= 0 and split_patch[index] is None:
+                split_patch[index] = patch_of[i]
+    if any(p is None for p in split_patch):
+        return fused, patch_of
+    # Keep only the faces: the tools' edges outside every face would otherwise ride along as loose edges.
+    faces_only, builder = TopoDS_Compound(), BRep_Builder()
+    builder.MakeCompound(faces_only)
+    for j in range(result_map.Size()):
+        builder.Add(faces_only, result_map.FindKey(j + 1))
+    return faces_only, split_patch  # type: ignore[return-value]
 
 
 def _describe(fused: TopoDS_Shape, patch_of: list[int]) -> dict[str, Any]:

@@ -46,14 +46,13 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
             largest[f.patch] = Some((f.area, i));
         }
     }
-    let mut branches = Vec::new();
+    let mut candidates: Vec<Option<Branch>> = vec![None; fused.faces.len()];
+    // Pieces of the same patch sharing an edge no other patch crosses.
+    let mut own_links: Vec<Vec<usize>> = vec![Vec::new(); fused.faces.len()];
     for (i, face) in fused.faces.iter().enumerate() {
-        if largest[face.patch].map(|(_, j)| j) == Some(i) {
-            continue;
-        }
         let mut crossing: Vec<usize> = Vec::new();
         let mut lines: Vec<&[DVec3]> = Vec::new();
-        let mut attached = false;
+        let mut hanging = false;
         for &e in &face.edges {
             let edge = &fused.edges[e];
             let others: Vec<usize> =
@@ -62,12 +61,14 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
                 crossing.extend(others);
                 lines.push(&edge.points);
             } else if edge.faces.len() > 1 {
-                attached = true;
+                own_links[i].extend(edge.faces.iter().copied().filter(|&g| g != i));
+            } else {
+                hanging = true;
             }
         }
-        // A piece hanging on its own patch by an edge no other patch crosses (a joint strip grown from
-        // the patch's edge) continues the patch: not a branch, however narrow.
-        if crossing.is_empty() || attached {
+        // A piece closed in by crossing lines all round (a floor between walls) is not a branch, however
+        // narrow: a branch hangs past the crossing, by a free edge or with other overshoot pieces.
+        if largest[face.patch].map(|(_, j)| j) == Some(i) || crossing.is_empty() || !(hanging || !own_links[i].is_empty()) {
             continue;
         }
         crossing.sort_unstable();
@@ -80,10 +81,22 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
             .map(|&p| lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min))
             .fold(0.0, f64::max);
         if width <= limit {
-            branches.push(Branch { piece: i, patch: face.patch, area: face.area, width, crossing });
+            candidates[i] = Some(Branch { piece: i, patch: face.patch, area: face.area, width, crossing });
         }
     }
-    branches
+    // A narrow piece joined (through other narrow pieces) to a piece of its patch that is not narrow continues
+    // the patch (a joint strip grown from its edge): only the rest hang past crossings.
+    let mut anchored: Vec<bool> = candidates.iter().map(Option::is_none).collect();
+    let mut queue: Vec<usize> = (0..anchored.len()).filter(|&i| anchored[i]).collect();
+    while let Some(i) = queue.pop() {
+        for &j in &own_links[i] {
+            if !anchored[j] {
+                anchored[j] = true;
+                queue.push(j);
+            }
+        }
+    }
+    candidates.into_iter().zip(anchored).filter_map(|(c, a)| if a { None } else { c }).collect()
 }
 
 /// Groups the kept pieces into connected sets (through edges shared by two kept pieces), each sorted, in
@@ -169,6 +182,15 @@ mod tests {
     fn a_wide_piece_is_not_a_branch() {
         // With thin crossing walls (t = 1.2) the 1 mm overshoot exceeds 0.75 x 1.2 = 0.9: kept.
         assert!(find_branches(&l_corner(), &[1.2, 1.2]).is_empty());
+    }
+
+    #[test]
+    fn a_piece_closed_in_by_crossings_is_not_a_branch() {
+        // Piece 1 of patch 0 loses its free edge: only the crossing line and another crossing bound it.
+        let mut fused = l_corner();
+        fused.edges[2].faces = vec![1, 2];
+        let pieces: Vec<usize> = find_branches(&fused, &[2.0, 2.0]).iter().map(|b| b.piece).collect();
+        assert_eq!(pieces, vec![3]);
     }
 
     #[test]

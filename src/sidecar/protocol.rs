@@ -41,6 +41,13 @@ pub struct StripRequest {
     pub lengths: Vec<f64>,
 }
 
+/// A quad closing the notch between two strips at a corner of a patch, oriented along the patch's normal.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CornerRequest {
+    pub points: [glam::DVec3; 4],
+    pub normal: glam::DVec3,
+}
+
 /// Faces (indices of MapShapes(FACE)) of the shape behind `handle`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GatherPart {
@@ -59,8 +66,9 @@ pub enum Request {
     Fuse { patches: Vec<u64>, fuzzy: f64 },
     MakeShells { handle: u64, shells: Vec<Vec<usize>> },
     ProbeEdges { handle: u64, edges: Vec<EdgeRef>, targets: Vec<usize>, samples: usize, reach: f64, step: f64 },
-    ExtendEdges { handle: u64, strips: Vec<StripRequest> },
-    Gather { parts: Vec<GatherPart> },
+    ExtendEdges { handle: u64, strips: Vec<StripRequest>, corners: Vec<CornerRequest> },
+    /// With `unify` (a fuzzy tolerance), the faces are joined and same-surface faces merged.
+    Gather { parts: Vec<GatherPart>, #[serde(skip_serializing_if = "Option::is_none")] unify: Option<f64> },
     WriteStep { path: String, handle: u64, faces: Vec<FaceAttributes> },
     Free { handles: Vec<u64> },
     Shutdown {},
@@ -235,6 +243,8 @@ pub struct MadeStrip {
 pub struct Extended {
     pub handle: u64,
     pub strips: Vec<MadeStrip>,
+    /// Made corners follow the made strips among the faces of `handle`.
+    pub corners: Vec<MadeStrip>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -305,12 +315,19 @@ mod tests {
                 r#"{"id":0,"op":"probe_edges","args":{"handle":9,"edges":[{"edge":4,"face":1,"solid":2}],"targets":[0,3],"samples":5,"reach":3.0,"step":0.5}}"#,
             ),
             (
-                Request::ExtendEdges { handle: 9, strips: vec![StripRequest { edge: 4, face: 1, lengths: vec![1.0, 1.5] }] },
-                r#"{"id":0,"op":"extend_edges","args":{"handle":9,"strips":[{"edge":4,"face":1,"lengths":[1.0,1.5]}]}}"#,
+                Request::ExtendEdges {
+                    handle: 9,
+                    strips: vec![StripRequest { edge: 4, face: 1, lengths: vec![1.0, 1.5] }],
+                    corners: vec![CornerRequest {
+                        points: [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::ONE, glam::DVec3::Y],
+                        normal: glam::DVec3::Z,
+                    }],
+                },
+                r#"{"id":0,"op":"extend_edges","args":{"handle":9,"strips":[{"edge":4,"face":1,"lengths":[1.0,1.5]}],"corners":[{"points":[[0.0,0.0,0.0],[1.0,0.0,0.0],[1.0,1.0,1.0],[0.0,1.0,0.0]],"normal":[0.0,0.0,1.0]}]}}"#,
             ),
             (
-                Request::Gather { parts: vec![GatherPart { handle: 9, faces: vec![0, 2] }] },
-                r#"{"id":0,"op":"gather","args":{"parts":[{"handle":9,"faces":[0,2]}]}}"#,
+                Request::Gather { parts: vec![GatherPart { handle: 9, faces: vec![0, 2] }], unify: Some(0.001) },
+                r#"{"id":0,"op":"gather","args":{"parts":[{"handle":9,"faces":[0,2]}],"unify":0.001}}"#,
             ),
             (Request::Free { handles: vec![1, 2] }, r#"{"id":0,"op":"free","args":{"handles":[1,2]}}"#),
             (Request::Shutdown {}, r#"{"id":0,"op":"shutdown","args":{}}"#),
