@@ -74,6 +74,9 @@ pub struct RunCli {
     /// Where to write the JSON report (fields in README.md, "Report").
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Where to write the topology summary as stable text (counts, free edges, patches, joints).
+    #[arg(long)]
+    pub summary: Option<PathBuf>,
     /// Leave the time per stage out of the report, so that two runs give byte-identical reports.
     #[arg(long)]
     pub no_timings: bool,
@@ -120,6 +123,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             input: r.part,
             output: r.output,
             report: r.report,
+            summary: r.summary,
             params: r.pairing.params(),
             timings: !r.no_timings,
         }),

@@ -20,3 +20,4 @@ pub mod pairing;
 pub mod pairs_report;
 pub mod synthetic;
 pub mod tolerance;
+pub mod topology;

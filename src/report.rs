@@ -8,6 +8,7 @@ use crate::pairing::{PairGroup, PairKind, Thickness};
 use crate::patch::trim::Branch;
 use crate::stitch::{FreeEdges, JointReport};
 use crate::tolerance::Tolerances;
+use crate::topology::Topology;
 
 /// Bumped when a field changes meaning or disappears.
 pub const REPORT_VERSION: u32 = 1;
@@ -26,6 +27,8 @@ pub struct Report {
     pub joints: Vec<JointReport>,
     pub thickness_legend: Vec<LegendEntry>,
     pub result: ResultSummary,
+    /// Stable summary of the stitched topology (rounded, sorted): what the snapshot tests compare.
+    pub topology: Topology,
     pub warnings: Vec<Warning>,
     /// Seconds per stage; absent with --no-timings (for byte-identical reports).
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -19,6 +19,7 @@ pub struct RunArgs {
     pub input: PathBuf,
     pub output: PathBuf,
     pub report: Option<PathBuf>,
+    pub summary: Option<PathBuf>,
     pub params: PairingParams,
     pub timings: bool,
 }
@@ -35,6 +36,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut timings = Timings::default();
     let step_out = crate::output::Pending::new(&args.output, &args.input)?;
     let report_out = args.report.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
+    let summary_out = args.summary.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
     let mut sidecar = part::start_sidecar(&args.input)?;
     let kernel = |e| Error::Sidecar { path: args.input.clone(), error: e };
 
@@ -143,6 +145,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     timings.write = t.elapsed().as_secs_f64();
     timings.total = started.elapsed().as_secs_f64();
 
+    let topology = crate::topology::summarise(&fused, &keep, &shells, sets.len(), &patches, &joints, free);
     let report = Report {
         report_version: REPORT_VERSION,
         midsurf_version: env!("CARGO_PKG_VERSION"),
@@ -161,14 +164,18 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
             area: shells.faces.iter().map(|&p| fused.faces[p].area).sum(),
             free_edges: free,
         },
+        topology,
         warnings,
         timings_s: args.timings.then_some(timings),
     };
     if let Some(pending) = &report_out {
         pending.write((serde_json::to_string_pretty(&report).expect("reports always serialise") + "\n").as_bytes())?;
     }
+    if let Some(pending) = &summary_out {
+        pending.write(report.topology.text().as_bytes())?;
+    }
     step_out.commit()?;
-    if let Some(pending) = report_out {
+    for pending in [report_out, summary_out].into_iter().flatten() {
         pending.commit()?;
     }
     eprintln!("{}", summary_line(&args.output, &report));

@@ -5,7 +5,7 @@ from typing import Any
 
 from OCP.BRep import BRep_Builder
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.TopAbs import TopAbs_FACE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_VERTEX
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape, TopoDS_Shell
 
 from .errors import KernelError
@@ -27,7 +27,12 @@ def make_shells(face_map: IndexedShapeMap, shells: list[list[int]]) -> tuple[Top
             builder.Add(shell, face_map.FindKey(face_id + 1))
         builder.Add(compound, shell)
     faces = _source_indices(compound, face_map)
-    return compound, {"faces": faces, "valid": BRepCheck_Analyzer(compound).IsValid()}
+    return compound, {
+        "faces": faces,
+        "valid": BRepCheck_Analyzer(compound).IsValid(),
+        "edges": indexed_map(compound, TopAbs_EDGE).Size(),
+        "vertices": indexed_map(compound, TopAbs_VERTEX).Size(),
+    }
 
 
 def _source_indices(shape: TopoDS_Shape, face_map: IndexedShapeMap) -> list[int]:

@@ -203,6 +203,8 @@ pub struct Shells {
     pub handle: u64,
     pub faces: Vec<usize>,
     pub valid: bool,
+    pub edges: usize,
+    pub vertices: usize,
 }
 
 /// Where a ray along a free edge's outward direction meets a target face's support surface.

@@ -1,0 +1,131 @@
+//! The topology summary of the mid-surface (DESIGN.md section 9): counts, Euler characteristic, free edges,
+//! patches and joints, with floats rounded and everything sorted so it is stable enough for snapshots.
+
+use serde::Serialize;
+
+use crate::report::PatchReport;
+use crate::sidecar::protocol::{Fused, Shells};
+use crate::stitch::{FreeEdges, JointReport};
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Topology {
+    pub faces: usize,
+    pub edges: usize,
+    pub vertices: usize,
+    /// V - E + F.
+    pub euler: i64,
+    /// Connected sets of faces (shells): one per connected part wanted.
+    pub components: usize,
+    /// Edges shared by three or more faces (T- and X-joints).
+    pub nonmanifold_edges: usize,
+    pub free_edges: Option<RoundedFree>,
+    pub patches: Vec<TopologyPatch>,
+    pub joints: Vec<TopologyJoint>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RoundedFree {
+    pub rim_edges: usize,
+    pub rim_length: f64,
+    pub open_edges: usize,
+    pub open_length: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TopologyPatch {
+    pub id: usize,
+    pub kind: String,
+    pub source_faces: Vec<usize>,
+    pub thickness: f64,
+    pub area: f64,
+    pub faces: usize,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TopologyJoint {
+    pub patches: Vec<usize>,
+    pub kind: &'static str,
+    pub status: &'static str,
+    pub edges: usize,
+    pub length: f64,
+}
+
+/// Rounded to `digits` decimals; -0 becomes 0 so the text does not flicker.
+pub fn round(x: f64, digits: i32) -> f64 {
+    let scale = 10f64.powi(digits);
+    let r = (x * scale).round() / scale;
+    if r == 0.0 { 0.0 } else { r }
+}
+
+pub fn summarise(
+    fused: &Fused,
+    keep: &[bool],
+    shells: &Shells,
+    components: usize,
+    patches: &[PatchReport],
+    joints: &[JointReport],
+    free: Option<FreeEdges>,
+) -> Topology {
+    let nonmanifold_edges =
+        fused.edges.iter().filter(|e| e.faces.iter().filter(|&&f| keep[f]).count() >= 3).count();
+    let faces = shells.faces.len();
+    let mut joints: Vec<TopologyJoint> = joints
+        .iter()
+        .map(|j| TopologyJoint { patches: j.patches.clone(), kind: j.kind, status: j.status, edges: j.edges, length: round(j.length, 2) })
+        .collect();
+    joints.sort_by(|a, b| (&a.patches, a.kind, a.status).cmp(&(&b.patches, b.kind, b.status)));
+    Topology {
+        faces,
+        edges: shells.edges,
+        vertices: shells.vertices,
+        euler: shells.vertices as i64 - shells.edges as i64 + faces as i64,
+        components,
+        nonmanifold_edges,
+        free_edges: free.map(|f| RoundedFree {
+            rim_edges: f.rim_edges,
+            rim_length: round(f.rim_length, 2),
+            open_edges: f.open_edges,
+            open_length: round(f.open_length, 2),
+        }),
+        patches: patches
+            .iter()
+            .map(|p| TopologyPatch {
+                id: p.id,
+                kind: serde_json::to_value(p.kind).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default(),
+                source_faces: p.source_faces.clone(),
+                thickness: round(p.thickness.mean, 3),
+                area: round(p.area, 1),
+                faces: p.faces,
+            })
+            .collect(),
+        joints,
+    }
+}
+
+impl Topology {
+    /// The stable text form (`midsurf run --summary`), one fact per line.
+    pub fn text(&self) -> String {
+        let mut out = format!(
+            "faces {}  edges {}  vertices {}  euler {}  components {}  nonmanifold_edges {}\n",
+            self.faces, self.edges, self.vertices, self.euler, self.components, self.nonmanifold_edges
+        );
+        match &self.free_edges {
+            Some(f) => out += &format!(
+                "free edges: rim {} ({:.2} mm), open {} ({:.2} mm)\n",
+                f.rim_edges, f.rim_length, f.open_edges, f.open_length
+            ),
+            None => out += "free edges: not classified (stitching failed)\n",
+        }
+        for p in &self.patches {
+            out += &format!(
+                "patch {} {} t={:.3} area={:.1} faces={} source={:?}\n",
+                p.id, p.kind, p.thickness, p.area, p.faces, p.source_faces
+            );
+        }
+        for j in &self.joints {
+            let ids: Vec<String> = j.patches.iter().map(usize::to_string).collect();
+            out += &format!("joint {} {} {} edges={} length={:.2}\n", ids.join("-"), j.kind, j.status, j.edges, j.length);
+        }
+        out
+    }
+}
