@@ -13,6 +13,7 @@
 
 use std::collections::BTreeMap;
 
+use glam::DVec3;
 use serde::Serialize;
 
 use crate::sidecar::protocol::{EdgeProbe, Hit};
@@ -53,10 +54,16 @@ pub enum Verdict {
     Unresolved,
 }
 
-/// Decides one free edge of patch `patch`. `patch_of[f]` is the patch of fused face f, `thickness[p]` of patch p.
-pub fn decide(patch: usize, probe: &EdgeProbe, patch_of: &[usize], thickness: &[f64], reach: f64) -> Verdict {
-    let inside = probe.inside.iter().filter(|&&b| b).count();
-    if 2 * inside <= probe.inside.len() {
+/// Whether most of the points `step` past the edge's samples lie in the material: an open joint, not the rim.
+pub fn is_open(probe: &EdgeProbe, step: f64, contains: impl Fn(DVec3) -> bool) -> bool {
+    let inside = probe.points.iter().zip(&probe.outward).filter(|&(&p, &d)| contains(p + d * step)).count();
+    2 * inside > probe.points.len()
+}
+
+/// Decides one free edge of patch `patch` (`open`: see [`is_open`]). `patch_of[f]` is the patch of fused face f,
+/// `thickness[p]` of patch p.
+pub fn decide(patch: usize, open: bool, probe: &EdgeProbe, patch_of: &[usize], thickness: &[f64], reach: f64) -> Verdict {
+    if !open {
         return Verdict::Rim;
     }
     let usable = |h: &&Hit| patch_of[h.face] != patch && h.gap <= reach && h.distance <= reach;
@@ -115,15 +122,9 @@ mod tests {
     use super::*;
     use glam::DVec3;
 
-    fn probe(inside: &[bool], hits: Vec<Vec<Hit>>) -> EdgeProbe {
-        let n = inside.len();
-        EdgeProbe {
-            points: vec![DVec3::ZERO; n],
-            normals: vec![DVec3::X; n],
-            outward: vec![-DVec3::Z; n],
-            inside: inside.to_vec(),
-            hits,
-        }
+    fn probe(hits: Vec<Vec<Hit>>) -> EdgeProbe {
+        let n = hits.len();
+        EdgeProbe { points: vec![DVec3::ZERO; n], normals: vec![DVec3::X; n], outward: vec![-DVec3::Z; n], hits }
     }
 
     fn hit(face: usize, distance: f64, gap: f64) -> Hit {
@@ -136,14 +137,19 @@ mod tests {
 
     #[test]
     fn an_edge_whose_outside_is_outside_the_solid_is_rim() {
-        let p = probe(&[false, false, true], vec![vec![hit(0, 1.0, 0.0)]; 3]);
-        assert_eq!(decide(1, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Rim);
+        let mut p = probe(vec![vec![hit(0, 1.0, 0.0)]; 3]);
+        p.points = vec![DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0), DVec3::new(2.0, 0.0, 0.0)];
+        // Material only below z = -0.5 at x >= 1.5: one sample of three.
+        let contains = |q: DVec3| q.z < -0.4 && q.x >= 1.5;
+        assert!(!is_open(&p, 0.5, contains));
+        assert_eq!(decide(1, false, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Rim);
+        assert!(is_open(&p, 0.5, |q: DVec3| q.z < -0.4 && q.x >= 0.5));
     }
 
     #[test]
     fn a_rib_edge_meeting_the_base_face_is_a_t_joint_with_overshoot() {
-        let p = probe(&[true; 3], vec![vec![hit(0, 1.0, 0.0)], vec![hit(1, 1.0, 0.0)], vec![hit(1, 1.0, 0.0), hit(3, 2.0, 0.0)]]);
-        let Verdict::Extend(e) = decide(1, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
+        let p = probe(vec![vec![hit(0, 1.0, 0.0)], vec![hit(1, 1.0, 0.0)], vec![hit(1, 1.0, 0.0), hit(3, 2.0, 0.0)]]);
+        let Verdict::Extend(e) = decide(1, true, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
         assert_eq!(e.kind, JointKind::T);
         assert_eq!(e.partner, 0);
         assert_eq!(e.lengths, vec![1.5; 3]);
@@ -151,8 +157,8 @@ mod tests {
 
     #[test]
     fn meeting_the_support_past_the_boundary_is_an_l_joint() {
-        let p = probe(&[true; 2], vec![vec![hit(2, 0.5, 0.5)], vec![hit(2, 0.7, 0.5)]]);
-        let Verdict::Extend(e) = decide(0, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
+        let p = probe(vec![vec![hit(2, 0.5, 0.5)], vec![hit(2, 0.7, 0.5)]]);
+        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
         assert_eq!(e.kind, JointKind::L);
         assert_eq!(e.partner, 1);
         assert_eq!(e.lengths, vec![0.75, 0.95]);
@@ -160,17 +166,16 @@ mod tests {
 
     #[test]
     fn own_patch_and_out_of_reach_meetings_do_not_count() {
-        let p = probe(&[true; 2], vec![vec![hit(1, 0.5, 0.0), hit(3, 3.5, 0.0)], vec![hit(3, 1.0, 4.0)]]);
-        assert_eq!(decide(0, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Unresolved);
+        let p = probe(vec![vec![hit(1, 0.5, 0.0), hit(3, 3.5, 0.0)], vec![hit(3, 1.0, 4.0)]]);
+        assert_eq!(decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Unresolved);
     }
 
     #[test]
     fn the_nearest_meeting_wins_and_samples_without_one_are_interpolated() {
         let p = probe(
-            &[true; 5],
             vec![vec![hit(2, 1.0, 0.0)], vec![], vec![hit(3, 0.5, 2.0), hit(2, 2.0, 0.0)], vec![hit(2, 3.0, 0.0)], vec![]],
         );
-        let Verdict::Extend(e) = decide(0, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
+        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
         assert_eq!(e.partner, 1);
         // Sample 2's best meeting is patch 2's support (0.5 + gap 2 = 2.5 > 2.0): patch 1 there too.
         assert_eq!(e.lengths, vec![1.25, 1.75, 2.25, 3.25, 3.25]);

@@ -12,6 +12,7 @@ use crate::part::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote};
 use crate::patch::trim::{connected_sets, find_branches};
 use crate::report::{self, *};
+use crate::geom::inside::SolidMesh;
 use crate::stitch::{stitch, JointReport, PatchInfo};
 use crate::sidecar::protocol::{FaceAttributes, Fused, MadePatch, Request, Shells, Written};
 
@@ -74,7 +75,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let t = Instant::now();
     let fuzzy = pairings.iter().map(|p| p.tolerances.fuse).fold(f64::INFINITY, f64::min);
     let fused: Fused = sidecar
-        .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy: if fuzzy.is_finite() { fuzzy } else { 0.0 } })
+        .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy: if fuzzy.is_finite() { fuzzy } else { 0.0 }, split_internal: false })
         .map_err(kernel)?;
     let thickness: Vec<f64> = made.iter().map(|m| m.plan.thickness.mean).collect();
     let mut branches = find_branches(&fused, &thickness);
@@ -89,12 +90,17 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         .iter()
         .map(|m| PatchInfo {
             thickness: m.plan.thickness.mean,
-            solid: part.solids[m.solid - 1].handle,
+            solid: m.solid - 1,
             reach: pairings[m.solid - 1].tolerances.joint_reach,
         })
         .collect();
     let fuzzy = if fuzzy.is_finite() { fuzzy } else { 0.0 };
-    let (fused, keep, joints, free) = match stitch(&mut sidecar, &fused, &keep, &infos, fuzzy) {
+    let meshes: Vec<SolidMesh> = part
+        .solids
+        .iter()
+        .map(|s| SolidMesh::new(&s.graph).expect("run describes every solid with meshes"))
+        .collect();
+    let (fused, keep, joints, free) = match stitch(&mut sidecar, &fused, &keep, &infos, &meshes, fuzzy) {
         Ok(s) => {
             branches.extend(s.branches);
             (s.fused, s.keep, s.joints, Some(s.free))

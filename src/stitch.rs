@@ -5,16 +5,18 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use crate::geom::inside::SolidMesh;
 use crate::joint::{self, JointKind, Verdict};
 use crate::patch::trim::{find_branches, Branch};
 use crate::sidecar::protocol::{CornerRequest, EdgeProbe, EdgeRef, Extended, Fused, Gathered, GatherPart, Probed, Request, StripRequest};
 use crate::sidecar::{Sidecar, SidecarError};
 
-/// What one patch brings: its thickness, the handle of its solid and how far its joints may reach.
+/// What one patch brings: its thickness, its solid (index into the solids' meshes) and how far its joints
+/// may reach.
 #[derive(Debug, Clone, Copy)]
 pub struct PatchInfo {
     pub thickness: f64,
-    pub solid: u64,
+    pub solid: usize,
     pub reach: f64,
 }
 
@@ -71,18 +73,17 @@ fn probe(
     if free.is_empty() {
         return Ok(Vec::new());
     }
-    let edges = free.iter().map(|&(edge, face)| EdgeRef { edge, face, solid: patches[fused.faces[face].patch].solid }).collect();
+    let edges = free.iter().map(|&(edge, face)| EdgeRef { edge, face }).collect();
     let reach = patches.iter().map(|p| p.reach).fold(0.0, f64::max);
-    let step = joint::PROBE_STEP * patches.iter().map(|p| p.thickness).fold(f64::INFINITY, f64::min);
-    let probed: Probed = sidecar.call(&Request::ProbeEdges {
-        handle: fused.handle,
-        edges,
-        targets,
-        samples: joint::SAMPLES,
-        reach,
-        step,
-    })?;
+    let probed: Probed =
+        sidecar.call(&Request::ProbeEdges { handle: fused.handle, edges, targets, samples: joint::SAMPLES, reach })?;
     Ok(probed.edges)
+}
+
+/// Whether the free edge of `face` lies in the material of its patch's solid.
+fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], solids: &[SolidMesh]) -> bool {
+    let patch = &patches[fused.faces[face].patch];
+    joint::is_open(probe, joint::PROBE_STEP * patch.thickness, |q| solids[patch.solid].contains(q))
 }
 
 /// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again.
@@ -91,6 +92,7 @@ pub fn stitch(
     fused: &Fused,
     keep: &[bool],
     patches: &[PatchInfo],
+    solids: &[SolidMesh],
     fuzzy: f64,
 ) -> Result<Stitched, SidecarError> {
     let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
@@ -105,7 +107,8 @@ pub fn stitch(
     for (&(edge, face), p) in free.iter().zip(&probes) {
         let patch = patch_of[face];
         let length = fused.edges[edge].length;
-        match joint::decide(patch, p, &patch_of, &thickness, patches[patch].reach) {
+        let open = open(fused, face, p, patches, solids);
+        match joint::decide(patch, open, p, &patch_of, &thickness, patches[patch].reach) {
             Verdict::Rim => {}
             Verdict::Unresolved => tally.add((vec![patch + 1], "none", "no_partner"), length),
             Verdict::Extend(x) => {
@@ -116,7 +119,7 @@ pub fn stitch(
         }
     }
     if planned.is_empty() {
-        let free = classify_free(sidecar, fused, keep, patches)?;
+        let free = classify_free(sidecar, fused, keep, patches, solids)?;
         return Ok(Stitched { fused: fused.clone(), keep: keep.to_vec(), branches: Vec::new(), joints: tally.reports(), strips: 0, free });
     }
     let corners = corners(&planned, fuzzy);
@@ -151,6 +154,8 @@ pub fn stitch(
         let pieces: Vec<usize> = kept.iter().copied().filter(|&f| patch_of[f] == k).collect();
         let own: Vec<usize> = strips.iter().filter(|(p, _)| *p == k).map(|&(_, j)| j).collect();
         let mut parts = Vec::new();
+        // Only a patch with strips has faces to merge.
+        let unify = (!own.is_empty()).then_some(fuzzy);
         if !pieces.is_empty() {
             parts.push(GatherPart { handle: fused.handle, faces: pieces });
         }
@@ -160,11 +165,11 @@ pub fn stitch(
         if parts.is_empty() {
             continue;
         }
-        let gathered: Gathered = sidecar.call(&Request::Gather { parts, unify: Some(fuzzy) })?;
+        let gathered: Gathered = sidecar.call(&Request::Gather { parts, unify })?;
         order.push(k);
         handles.push(gathered.handle);
     }
-    let mut again: Fused = sidecar.call(&Request::Fuse { patches: handles, fuzzy })?;
+    let mut again: Fused = sidecar.call(&Request::Fuse { patches: handles, fuzzy, split_internal: true })?;
     for face in &mut again.faces {
         face.patch = order[face.patch];
     }
@@ -173,7 +178,7 @@ pub fn stitch(
     for b in &branches {
         keep[b.piece] = false;
     }
-    let free = classify_free(sidecar, &again, &keep, patches)?;
+    let free = classify_free(sidecar, &again, &keep, patches, solids)?;
     Ok(Stitched { fused: again, keep, branches, joints, strips: made_strips, free })
 }
 
@@ -212,13 +217,19 @@ fn corners(planned: &[(usize, StripRequest, JointKey, &EdgeProbe)], fuzzy: f64) 
 }
 
 /// Sorts the free edges of the result into rim and open joints (the inside test of `decide`).
-fn classify_free(sidecar: &mut Sidecar, fused: &Fused, keep: &[bool], patches: &[PatchInfo]) -> Result<FreeEdges, SidecarError> {
+fn classify_free(
+    sidecar: &mut Sidecar,
+    fused: &Fused,
+    keep: &[bool],
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+) -> Result<FreeEdges, SidecarError> {
     let free = free_edges(fused, keep);
     let probes = probe(sidecar, fused, &free, Vec::new(), patches)?;
     let mut out = FreeEdges::default();
-    for (&(edge, _), p) in free.iter().zip(&probes) {
+    for (&(edge, face), p) in free.iter().zip(&probes) {
         let length = fused.edges[edge].length;
-        if 2 * p.inside.iter().filter(|&&b| b).count() > p.inside.len() {
+        if open(fused, face, p, patches, solids) {
             out.open_edges += 1;
             out.open_length += length;
         } else {

@@ -2,9 +2,9 @@
 
 For each free edge (an edge of one face of the fused patches) the edge is sampled at evenly spaced
 parameters, both ends included. At each sample: the point, the face's normal, the outward direction (in the
-face's tangent plane, at right angles to the edge, away from the face), whether a point a little past the edge
-lies inside the solid (a free edge inside the material is an open joint; one on the solid's boundary is the
-part's rim), and where a ray along the outward direction meets the support surfaces of the target faces.
+face's tangent plane, at right angles to the edge, away from the face), and where a ray along the outward
+direction meets the support surfaces of the target faces. (Whether the edge lies in the material is Rust's
+test, on the solid's mesh: the kernel's solid classifier is far too slow for thousands of points.)
 """
 
 from dataclasses import dataclass
@@ -15,7 +15,6 @@ from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
 from OCP.BRepClass import BRepClass_FaceClassifier
-from OCP.BRepClass3d import BRepClass3d_SolidClassifier
 from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.Bnd import Bnd_Box
 from OCP.Geom import Geom_Line
@@ -100,31 +99,37 @@ def _check_side(face: TopoDS_Face, samples: list[EdgeSample]) -> None:
 class TargetFaces:
     """Faces rays may meet: their support surfaces, boxes (for a quick miss) and classifiers."""
 
-    def __init__(self, faces: dict[int, TopoDS_Face]) -> None:
+    def __init__(self, faces: dict[int, TopoDS_Face], reach: float) -> None:
         self.faces = faces
         self.surfaces = {i: BRep_Tool.Surface_s(f) for i, f in faces.items()}
+        # Boxes grown by the reach once, not per ray.
         self.boxes = {}
         for i, f in faces.items():
             box = Bnd_Box()
             BRepBndLib.Add_s(f, box, False)
+            box.Enlarge(reach)
             self.boxes[i] = box
 
-    def hits(self, origin: Vec, direction: Vec, reach: float, skip: set[int]) -> list[dict[str, Any]]:
-        """Meetings of the ray with the support surfaces within (0, reach]: face, distance along the ray and
-        gap (distance from the meeting point to the face itself, 0 on the face). Nearest first."""
+    def near(self, samples: list[EdgeSample], reach: float, skip: set[int]) -> list[int]:
+        """Targets whose grown boxes meet the box of all the edge's rays: the only ones its rays can meet."""
+        rays = Bnd_Box()
+        for s in samples:
+            rays.Add(gp_Pnt(*s.point))
+            rays.Add(gp_Pnt(*add_scaled(s.point, s.outward, reach)))
+        return [i for i in self.faces if i not in skip and not self.boxes[i].IsOut(rays)]
+
+    def hits(self, origin: Vec, direction: Vec, reach: float, candidates: list[int]) -> list[dict[str, Any]]:
+        """Meetings of the ray with the support surfaces of `candidates` within (0, reach]: face, distance along
+        the ray and gap (distance from the meeting point to the face itself, 0 on the face). Nearest first."""
         end = add_scaled(origin, direction, reach)
         ray_box = Bnd_Box()
         ray_box.Add(gp_Pnt(*origin))
         ray_box.Add(gp_Pnt(*end))
         line = Geom_Line(gp_Lin(gp_Pnt(*origin), gp_Dir(*direction)))
         found = []
-        for i, face in self.faces.items():
-            if i in skip:
-                continue
-            box = Bnd_Box()
-            box.Add(self.boxes[i])
-            box.Enlarge(reach)
-            if box.IsOut(ray_box):
+        for i in candidates:
+            face = self.faces[i]
+            if self.boxes[i].IsOut(ray_box):
                 continue
             meet = GeomAPI_IntCS(line, self.surfaces[i])
             if not meet.IsDone():
@@ -149,31 +154,17 @@ class TargetFaces:
         return distance.Value()
 
 
-def probe(
-    edges: list[tuple[TopoDS_Face, TopoDS_Shape, TopoDS_Shape, int]],
-    targets: TargetFaces,
-    samples: int,
-    reach: float,
-    step: float,
-) -> list[dict[str, Any]]:
-    """`edges`: (face, edge, solid, own face index). One reply entry per edge."""
-    classifiers: dict[int, BRepClass3d_SolidClassifier] = {}
-    solid_ids: dict[int, int] = {}
+def probe(edges: list[tuple[TopoDS_Face, TopoDS_Shape, int]], targets: TargetFaces, samples: int, reach: float) -> list[dict[str, Any]]:
+    """`edges`: (face, edge, own face index). One reply entry per edge."""
     out = []
-    for face, edge, solid, own in edges:
-        key = solid_ids.setdefault(id(solid), len(solid_ids))
-        if key not in classifiers:
-            classifiers[key] = BRepClass3d_SolidClassifier(solid)
-        classifier = classifiers[key]
-        entry: dict[str, list[Any]] = {"points": [], "normals": [], "outward": [], "inside": [], "hits": []}
-        for sample in sample_edge(face, edge, samples):
-            beyond = add_scaled(sample.point, sample.outward, step)
-            classifier.Perform(gp_Pnt(*beyond), 1e-7)
+    for face, edge, own in edges:
+        entry: dict[str, list[Any]] = {"points": [], "normals": [], "outward": [], "hits": []}
+        sampled = sample_edge(face, edge, samples)
+        candidates = targets.near(sampled, reach, {own})
+        for sample in sampled:
             entry["points"].append(list(sample.point))
             entry["normals"].append(list(sample.normal))
             entry["outward"].append(list(sample.outward))
-            entry["inside"].append(classifier.State() != TopAbs_OUT)
-            entry["hits"].append(targets.hits(sample.point, sample.outward, reach, {own}))
+            entry["hits"].append(targets.hits(sample.point, sample.outward, reach, candidates))
         out.append(entry)
     return out
-

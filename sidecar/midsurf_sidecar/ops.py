@@ -79,7 +79,8 @@ def fuse(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     if repeated:
         raise BadArgs(f"patch handles {repeated} are listed more than once")
     fuzzy = require_non_negative(args, "fuzzy")
-    fused, described = patch_fuse.fuse([store.get(h) for h in handles], fuzzy)
+    split_internal = optional_bool(args, "split_internal", False)
+    fused, described = patch_fuse.fuse([store.get(h) for h in handles], fuzzy, split_internal)
     return {"handle": store.put(fused), **described}
 
 
@@ -128,7 +129,7 @@ def probe_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     shape = store.get(require_handle(args))
     face_map, edge_map = indexed_map(shape, TopAbs_FACE), indexed_map(shape, TopAbs_EDGE)
     samples = require_int(args, "samples", 2)
-    reach, step = require_positive(args, "reach"), require_positive(args, "step")
+    reach = require_positive(args, "reach")
     targets = index_list(args.get("targets"), face_map.Size(), "target face", "the fused shape")
     edges = []
     for entry in require_list(args, "edges"):
@@ -136,10 +137,9 @@ def probe_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
             raise BadArgs(f"each of `edges` must be an object, got {entry!r}")
         (face_id,) = index_list([require_int(entry, "face")], face_map.Size(), "face", "the fused shape")
         (edge_id,) = index_list([require_int(entry, "edge")], edge_map.Size(), "edge", "the fused shape")
-        solid = store.get(require_handle(entry, "solid"))
-        edges.append((TopoDS.Face(face_map.FindKey(face_id + 1)), edge_map.FindKey(edge_id + 1), solid, face_id))
-    faces = edge_probe.TargetFaces({i: TopoDS.Face(face_map.FindKey(i + 1)) for i in targets})
-    return {"edges": edge_probe.probe(edges, faces, samples, reach, step)}
+        edges.append((TopoDS.Face(face_map.FindKey(face_id + 1)), edge_map.FindKey(edge_id + 1), face_id))
+    faces = edge_probe.TargetFaces({i: TopoDS.Face(face_map.FindKey(i + 1)) for i in targets}, reach)
+    return {"edges": edge_probe.probe(edges, faces, samples, reach)}
 
 
 def extend_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:

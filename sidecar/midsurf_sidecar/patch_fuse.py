@@ -25,13 +25,14 @@ from .vectors import xyz
 EDGE_POINTS = 5
 
 
-def fuse(patches: list[TopoDS_Shape], fuzzy: float) -> tuple[TopoDS_Shape, dict[str, Any]]:
+def fuse(patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool = False) -> tuple[TopoDS_Shape, dict[str, Any]]:
     """(F, the reply's `faces` and `edges`).
 
     Every FACE of every patch is an argument of its own, not every patch: BOPAlgo_Builder does not
     intersect the sub-shapes of one argument with each other, so the separately offset faces of a patch
     (plane + bend + plane) would keep unshared edges, and a single argument is refused outright
-    (BOPAlgo_AlertTooFewArguments).
+    (BOPAlgo_AlertTooFewArguments). `split_internal`: see _split_at_internal_edges (costly: only for the
+    final result).
     """
     # Every input face once, with the index of the first patch holding it.
     inputs = IndexedShapeMap()
@@ -62,7 +63,8 @@ def fuse(patches: list[TopoDS_Shape], fuzzy: float) -> tuple[TopoDS_Shape, dict[
         raise KernelError(f"BOPAlgo_Builder failed on {inputs.Size()} faces: {_alerts(builder)}")
     fused = builder.Shape()
     patch_of = _trace_patches(builder, inputs, input_patch, indexed_map(fused, TopAbs_FACE))
-    fused, patch_of = _split_at_internal_edges(fused, patch_of, fuzzy)
+    if split_internal:
+        fused, patch_of = _split_at_internal_edges(fused, patch_of, fuzzy)
     return fused, _describe(fused, patch_of)
 
 

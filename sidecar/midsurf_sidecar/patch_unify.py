@@ -18,6 +18,7 @@ def unify(faces: list[TopoDS_Shape], fuzzy: float) -> TopoDS_Shape:
         builder.AddArgument(face)
     builder.SetFuzzyValue(fuzzy)
     builder.SetNonDestructive(True)
+    builder.SetRunParallel(True)
     builder.Perform()
     if builder.HasErrors():
         raise KernelError(f"joining the {len(faces)} faces of a patch failed")

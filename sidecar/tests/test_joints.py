@@ -1,18 +1,9 @@
 """probe_edges, extend_edges and gather: a T joint made by growing the rib's free edge down to the base."""
 
 import pytest
-from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox
-from OCP.gp import gp_Pnt
 
 from patch_shapes import horizontal, put_patches, rectangle
 from test_fuse import fuse
-
-
-def t_solid(client) -> int:
-    """Base plate z 0..2 and a rib x 29..31 up to z 40, as one box each (their union is irrelevant here: only
-    inside/outside of the points past the rib's free edge is asked)."""
-    box = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), gp_Pnt(60, 40, 2)).Shape()
-    return client.session.store.put(box)
 
 
 def rib(z0: float):
@@ -33,20 +24,16 @@ def free_edge_of(fused, patch, z):
 
 
 def test_rib_edge_reaches_base_then_strip_shares_the_t_edge(client):
-    solid = t_solid(client)
     fused = fuse(client, put_patches(client, horizontal(), rib(2.0)))
     edge, face = free_edge_of(fused, 1, 2.0)
     targets = list(range(len(fused["faces"])))
     reply = client.ok(
-        "probe_edges", handle=fused["handle"], edges=[{"edge": edge, "face": face, "solid": solid}],
-        targets=targets, samples=5, reach=3.0, step=0.5,
+        "probe_edges", handle=fused["handle"], edges=[{"edge": edge, "face": face}], targets=targets, samples=5, reach=3.0
     )
     (probe,) = reply["edges"]
     assert len(probe["points"]) == 5
-    for outward, inside, hits in zip(probe["outward"], probe["inside"], probe["hits"]):
+    for outward, hits in zip(probe["outward"], probe["hits"]):
         assert outward == pytest.approx([0, 0, -1], abs=1e-12)
-        # z = 1.5 lies in the base plate: an open joint, not the rim.
-        assert inside
         assert hits[0]["distance"] == pytest.approx(1.0)
         assert hits[0]["gap"] == pytest.approx(0.0)
         assert fused["faces"][hits[0]["face"]]["patch"] == 0
@@ -66,22 +53,26 @@ def test_rib_edge_reaches_base_then_strip_shares_the_t_edge(client):
     assert len(t_edges) == 1 and t_edges[0]["length"] == pytest.approx(40.0)
 
 
-def test_rim_edge_points_outside_the_solid(client):
-    solid = t_solid(client)
+def test_outward_points_away_from_the_face_whatever_the_edge_orientation(client):
     fused = fuse(client, put_patches(client, horizontal(), rib(2.0)))
-    # The base patch's edge at x = 60 is the plate's rim: just past it is outside.
+    # Each free edge of the base (x = 0, x = 60, y = 0, y = 40) points out of the rectangle.
+    expected = {(0, None): [-1, 0, 0], (60, None): [1, 0, 0], (None, 0): [0, -1, 0], (None, 40): [0, 1, 0]}
+    seen = 0
     for i, face in enumerate(fused["faces"]):
+        if face["patch"] != 0:
+            continue
         for e in face["edges"]:
-            if all(p[0] == pytest.approx(60) for p in fused["edges"][e]["points"]):
-                edge, own = e, i
-    reply = client.ok(
-        "probe_edges", handle=fused["handle"], edges=[{"edge": edge, "face": own, "solid": solid}],
-        targets=[], samples=3, reach=3.0, step=0.5,
-    )
-    (probe,) = reply["edges"]
-    assert probe["inside"] == [False, False, False]
-    assert probe["outward"] == [pytest.approx([1, 0, 0], abs=1e-12)] * 3
-    assert probe["hits"] == [[], [], []]
+            points = fused["edges"][e]["points"]
+            for (x, y), outward in expected.items():
+                on = all(p[0] == pytest.approx(x) for p in points) if x is not None else all(p[1] == pytest.approx(y) for p in points)
+                if not on:
+                    continue
+                reply = client.ok("probe_edges", handle=fused["handle"], edges=[{"edge": e, "face": i}], targets=[], samples=3, reach=3.0)
+                (probe,) = reply["edges"]
+                assert probe["outward"] == [pytest.approx(outward, abs=1e-12)] * 3
+                assert probe["hits"] == [[], [], []]
+                seen += 1
+    assert seen == 4
 
 
 def test_strip_needs_positive_lengths(client):

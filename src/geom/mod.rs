@@ -1,6 +1,7 @@
 //! Small geometric kernels computed in Rust: 2D clipping, rays, frames.
 
 pub mod clip;
+pub mod inside;
 pub mod ray;
 
 use glam::DVec3;

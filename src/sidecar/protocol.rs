@@ -25,12 +25,11 @@ pub enum Placement {
     Plane { origin: [f64; 3], normal: [f64; 3] },
 }
 
-/// A free edge of a fused shape, seen from its face, and the solid it should lie in.
+/// A free edge of a fused shape, seen from its face.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct EdgeRef {
     pub edge: usize,
     pub face: usize,
-    pub solid: u64,
 }
 
 /// A strip grown outward from `edge` of `face`, by `lengths[k]` at the k-th of evenly spaced samples.
@@ -63,9 +62,10 @@ pub enum Request {
     LoadStep { path: String },
     Describe { handle: u64, mesh: bool, mesh_tolerance: f64 },
     MakePatch { handle: u64, faces: Vec<usize>, #[serde(flatten)] placement: Placement },
-    Fuse { patches: Vec<u64>, fuzzy: f64 },
+    /// `split_internal`: split faces along joints that end inside them (for the final result only).
+    Fuse { patches: Vec<u64>, fuzzy: f64, #[serde(skip_serializing_if = "std::ops::Not::not")] split_internal: bool },
     MakeShells { handle: u64, shells: Vec<Vec<usize>> },
-    ProbeEdges { handle: u64, edges: Vec<EdgeRef>, targets: Vec<usize>, samples: usize, reach: f64, step: f64 },
+    ProbeEdges { handle: u64, edges: Vec<EdgeRef>, targets: Vec<usize>, samples: usize, reach: f64 },
     ExtendEdges { handle: u64, strips: Vec<StripRequest>, corners: Vec<CornerRequest> },
     /// With `unify` (a fuzzy tolerance), the faces are joined and same-surface faces merged.
     Gather { parts: Vec<GatherPart>, #[serde(skip_serializing_if = "Option::is_none")] unify: Option<f64> },
@@ -222,8 +222,6 @@ pub struct EdgeProbe {
     pub points: Vec<glam::DVec3>,
     pub normals: Vec<glam::DVec3>,
     pub outward: Vec<glam::DVec3>,
-    /// Whether the point `step` past the edge is inside (or on) the solid: an open joint rather than the rim.
-    pub inside: Vec<bool>,
     /// Per sample, nearest first.
     pub hits: Vec<Vec<Hit>>,
 }
@@ -298,7 +296,7 @@ mod tests {
                 r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[7],"plane":{"origin":[50.0,0.0,0.0],"normal":[1.0,0.0,0.0]}}}"#,
             ),
             (
-                Request::Fuse { patches: vec![3, 4], fuzzy: 0.001 },
+                Request::Fuse { patches: vec![3, 4], fuzzy: 0.001, split_internal: false },
                 r#"{"id":0,"op":"fuse","args":{"patches":[3,4],"fuzzy":0.001}}"#,
             ),
             (
@@ -308,13 +306,12 @@ mod tests {
             (
                 Request::ProbeEdges {
                     handle: 9,
-                    edges: vec![EdgeRef { edge: 4, face: 1, solid: 2 }],
+                    edges: vec![EdgeRef { edge: 4, face: 1 }],
                     targets: vec![0, 3],
                     samples: 5,
                     reach: 3.0,
-                    step: 0.5,
                 },
-                r#"{"id":0,"op":"probe_edges","args":{"handle":9,"edges":[{"edge":4,"face":1,"solid":2}],"targets":[0,3],"samples":5,"reach":3.0,"step":0.5}}"#,
+                r#"{"id":0,"op":"probe_edges","args":{"handle":9,"edges":[{"edge":4,"face":1}],"targets":[0,3],"samples":5,"reach":3.0}}"#,
             ),
             (
                 Request::ExtendEdges {
