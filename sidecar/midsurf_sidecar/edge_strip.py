@@ -6,14 +6,18 @@ for a straight edge reaching a plane, twisted where the lengths vary along a cur
 coincides with the patch's edge, so the next `fuse` shares it.
 """
 
-from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepFill import BRepFill
 from OCP.GC import GC_MakeSegment
-from OCP.GeomAbs import GeomAbs_Line, GeomAbs_Plane
+from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
 from OCP.GeomAPI import GeomAPI_Interpolate
-from OCP.gp import gp_Pln, gp_Pnt
+from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
+from OCP.gp import gp_Pln, gp_Pnt, gp_Vec
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopExp import TopExp_Explorer
 from OCP.collections import HArray1_gp_Pnt
 from OCP.TopAbs import TopAbs_FORWARD
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
@@ -23,7 +27,11 @@ from .errors import KernelError
 from .face_measure import diagonal
 from .face_normals import OutwardNormals
 from .face_point import interior_point
-from .vectors import Vec, add_scaled, cross, dot, norm, sub
+from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
+
+
+# Outward directions (unit vectors) and lengths equal to this (relative) share are one sweep.
+PARALLEL = 1e-6
 
 
 def strip(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float]) -> TopoDS_Face:
@@ -41,6 +49,19 @@ def _oriented_like(made: TopoDS_Face, normal: Vec) -> TopoDS_Face:
 
 def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[float]) -> TopoDS_Face:
     far = [add_scaled(s.point, s.outward, length) for s, length in zip(samples, lengths)]
+    first = samples[0].outward
+    if all(norm(sub(s.outward, first)) <= PARALLEL for s in samples) and max(lengths) - min(lengths) <= PARALLEL * max(lengths):
+        # One direction, one length: the edge swept straight, which keeps the patch's own surface where it
+        # can (a circle along its cylinder's axis stays that cylinder), so the strip merges into the patch.
+        sweep = scale(first, sum(lengths) / len(lengths))
+        along_axis = _along_cylinder(face, edge, sweep)
+        if along_axis is not None:
+            return along_axis
+        prism = BRepPrimAPI_MakePrism(TopoDS.Edge(edge.Oriented(TopAbs_FORWARD)), gp_Vec(*sweep))
+        if prism.IsDone():
+            swept = TopExp_Explorer(prism.Shape(), TopAbs_FACE)
+            if swept.More():
+                return TopoDS.Face(swept.Current())
     # Forward, so the ruled surface joins the near edge's first vertex to the far curve's first point.
     near = TopoDS.Edge(edge.Oriented(TopAbs_FORWARD))
     near_curve = BRepAdaptor_Curve(near)
@@ -65,6 +86,31 @@ def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[f
     if result.IsNull() or not BRepCheck_Analyzer(result).IsValid():
         raise KernelError("the strip face is not valid")
     return result
+
+
+def _along_cylinder(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
+    """On a cylindrical patch, an edge swept along the axis as a face of the patch's own cylinder (a prism
+    would be a surface of extrusion, which unify_same_domain cannot merge into the cylinder)."""
+    adaptor = BRepAdaptor_Surface(face, False)
+    if adaptor.GetType() != GeomAbs_Cylinder:
+        return None
+    axis = xyz(adaptor.Cylinder().Axis().Direction())
+    length = norm(sweep)
+    along = dot(sweep, axis)
+    if abs(abs(along) - length) > PARALLEL * length:
+        return None
+    curve = BRepAdaptor_Curve2d(TopoDS.Edge(edge), face)
+    start, end = curve.Value(curve.FirstParameter()), curve.Value(curve.LastParameter())
+    if abs(start.Y() - end.Y()) > PARALLEL * max(1.0, length):
+        return None  # not an iso-v circle of the cylinder
+    # v runs along the axis direction of the cylinder's frame, in length units.
+    v0 = start.Y()
+    u0, u1 = sorted((start.X(), end.X()))
+    if u1 - u0 <= 0.0:
+        return None
+    v1 = v0 + along
+    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v0, v1), max(v0, v1), 1e-7)
+    return maker.Face() if maker.IsDone() else None
 
 
 def _plane_of(face: TopoDS_Face) -> gp_Pln | None:

@@ -80,3 +80,40 @@ def test_strip_needs_positive_lengths(client):
     edge, face = free_edge_of(fused, 1, 2.0)
     reply = client.request("extend_edges", handle=fused["handle"], strips=[{"edge": edge, "face": face, "lengths": [1.0, 0.0]}])
     assert reply["err"]["code"] == "bad_args"
+
+
+def test_a_tube_end_grows_along_its_own_cylinder():
+    """A circle edge of a cylindrical patch grown along the axis stays on the patch's cylinder (so it merges
+    into the patch), not a ruled or extruded surface."""
+    import math
+
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
+    from OCP.GeomAbs import GeomAbs_Cylinder
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    from midsurf_sidecar.edge_strip import strip
+    from midsurf_sidecar.topology import surface_props
+
+    solid = BRepPrimAPI_MakeCylinder(2.0, 5.0).Shape()
+    explorer = TopExp_Explorer(solid, TopAbs_FACE)
+    while BRepAdaptor_Surface(TopoDS.Face(explorer.Current())).GetType() != GeomAbs_Cylinder:
+        explorer.Next()
+    side = TopoDS.Face(explorer.Current())
+    edges = TopExp_Explorer(side, TopAbs_EDGE)
+    bottom = None
+    while edges.More():
+        edge = TopoDS.Edge(edges.Current())
+        from OCP.BRepAdaptor import BRepAdaptor_Curve
+
+        curve = BRepAdaptor_Curve(edge)
+        if curve.GetType().name == "GeomAbs_Circle" and curve.Value(curve.FirstParameter()).Z() == pytest.approx(0.0):
+            bottom = edge
+        edges.Next()
+    grown = strip(side, bottom, [1.5] * 5)
+    assert BRepAdaptor_Surface(grown).GetType() == GeomAbs_Cylinder
+    assert surface_props(grown).Mass() == pytest.approx(2 * math.pi * 2.0 * 1.5)
+    box_z = [BRepAdaptor_Surface(grown).Value(0.0, v).Z() for v in (BRepAdaptor_Surface(grown).FirstVParameter(), BRepAdaptor_Surface(grown).LastVParameter())]
+    assert sorted(box_z) == pytest.approx([-1.5, 0.0])
