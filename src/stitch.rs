@@ -86,7 +86,8 @@ fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], so
     joint::is_open(probe, joint::PROBE_STEP * patch.thickness, |q| solids[patch.solid].contains(q))
 }
 
-/// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again.
+/// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again (also without any
+/// extension: the final fuse splits faces along joints that end inside them).
 pub fn stitch(
     sidecar: &mut Sidecar,
     fused: &Fused,
@@ -118,32 +119,33 @@ pub fn stitch(
             }
         }
     }
-    if planned.is_empty() {
-        let free = classify_free(sidecar, fused, keep, patches, solids)?;
-        return Ok(Stitched { fused: fused.clone(), keep: keep.to_vec(), branches: Vec::new(), joints: tally.reports(), strips: 0, free });
-    }
-    let corners = corners(&planned, fuzzy);
-    let extended: Extended = sidecar.call(&Request::ExtendEdges {
-        handle: fused.handle,
-        strips: planned.iter().map(|(_, s, _, _)| s.clone()).collect(),
-        corners: corners.iter().map(|(_, c)| c.clone()).collect(),
-    })?;
-    // (patch, index among the faces of `extended.handle`) of each made strip and corner.
+    // (patch, index among the faces of the extension's handle) of each made strip and corner.
     let mut strips: Vec<(usize, usize)> = Vec::new();
-    for ((patch, request, key, _), made) in planned.into_iter().zip(&extended.strips) {
-        let length = fused.edges[request.edge].length;
-        if made.area.is_some() {
-            strips.push((patch, strips.len()));
-            tally.add(key, length);
-        } else {
-            tally.add((key.0, key.1, "kernel_failed"), length);
+    let mut made_strips = 0;
+    let mut extended_handle = None;
+    if !planned.is_empty() {
+        let corners = corners(&planned, fuzzy);
+        let extended: Extended = sidecar.call(&Request::ExtendEdges {
+            handle: fused.handle,
+            strips: planned.iter().map(|(_, s, _, _)| s.clone()).collect(),
+            corners: corners.iter().map(|(_, c)| c.clone()).collect(),
+        })?;
+        for ((patch, request, key, _), made) in planned.into_iter().zip(&extended.strips) {
+            let length = fused.edges[request.edge].length;
+            if made.area.is_some() {
+                strips.push((patch, strips.len()));
+                tally.add(key, length);
+            } else {
+                tally.add((key.0, key.1, "kernel_failed"), length);
+            }
         }
-    }
-    let made_strips = strips.len();
-    for (&(patch, _), made) in corners.iter().zip(&extended.corners) {
-        if made.area.is_some() {
-            strips.push((patch, strips.len()));
+        made_strips = strips.len();
+        for (&(patch, _), made) in corners.iter().zip(&extended.corners) {
+            if made.area.is_some() {
+                strips.push((patch, strips.len()));
+            }
         }
+        extended_handle = Some(extended.handle);
     }
     let joints = tally.reports();
 
@@ -159,8 +161,8 @@ pub fn stitch(
         if !pieces.is_empty() {
             parts.push(GatherPart { handle: fused.handle, faces: pieces });
         }
-        if !own.is_empty() {
-            parts.push(GatherPart { handle: extended.handle, faces: own });
+        if let (Some(handle), false) = (extended_handle, own.is_empty()) {
+            parts.push(GatherPart { handle, faces: own });
         }
         if parts.is_empty() {
             continue;

@@ -73,6 +73,7 @@ def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[f
             return _planar_quad(plane, [samples[0].point, samples[-1].point, far[-1], far[0]])
         far_curve = GC_MakeSegment(gp_Pnt(*far[0]), gp_Pnt(*far[-1])).Value()
     else:
+        _refuse_fold(samples, far)
         points = HArray1_gp_Pnt(1, len(far))
         for k, p in enumerate(far):
             points.SetValue(k + 1, gp_Pnt(*p))
@@ -152,6 +153,14 @@ def _corner(points: list[Vec]) -> TopoDS_Face:
     if result.IsNull() or not BRepCheck_Analyzer(result).IsValid():
         raise KernelError("the corner face is not valid")
     return result
+
+
+def _refuse_fold(samples: list, far: list[Vec]) -> None:
+    """A strip grown past the radius of a concave arc folds over itself (the far curve runs backwards); the
+    kernel accepts the face and the fuse then cuts it into invalid slivers, so refuse it here."""
+    for k in range(len(far) - 1):
+        if dot(sub(far[k + 1], far[k]), sub(samples[k + 1].point, samples[k].point)) <= 0.0:
+            raise KernelError("the strip would fold over itself (grown past the radius of a concave edge)")
 
 
 def _collinear(points: list[Vec], tolerance: float) -> bool:

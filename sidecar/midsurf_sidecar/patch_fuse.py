@@ -4,7 +4,7 @@ share their crossing edges; each face of the result traced back to its patch thr
 from typing import Any
 
 from OCP.BOPAlgo import BOPAlgo_Builder
-from OCP.BRepAlgoAPI import BRepAlgoAPI_Splitter
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Common, BRepAlgoAPI_Splitter
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.GeomAbs import GeomAbs_Line
 from OCP.collections import List_TopoDS_Shape
@@ -87,7 +87,12 @@ def _split_at_internal_edges(fused: TopoDS_Shape, patch_of: list[int], fuzzy: fl
                 continue
             reach = diagonal(face)
             first, last = curve.FirstParameter() - reach, curve.LastParameter() + reach
-            tools.append(BRepBuilderAPI_MakeEdge(curve.Line(), first, last).Edge())
+            line = BRepBuilderAPI_MakeEdge(curve.Line(), first, last).Edge()
+            # Clipped to its own face: a line through the whole result would also cut other faces of the same
+            # plane, leaving slivers the fuzzy value folds (found on fwdesktop_top_cover).
+            clipped = BRepAlgoAPI_Common(line, face)
+            if clipped.IsDone():
+                tools.extend(indexed_map(clipped.Shape(), TopAbs_EDGE).FindKey(k + 1) for k in range(indexed_map(clipped.Shape(), TopAbs_EDGE).Size()))
     if not tools:
         return fused, patch_of
     splitter = BRepAlgoAPI_Splitter()
