@@ -14,7 +14,6 @@
 use std::collections::BTreeMap;
 
 use glam::DVec3;
-use serde::Serialize;
 
 use crate::sidecar::protocol::{EdgeProbe, Hit};
 
@@ -26,13 +25,22 @@ pub const PROBE_STEP: f64 = 0.25;
 /// Samples per free edge (ends included): enough to follow a curved edge or a tilted partner.
 pub const SAMPLES: usize = 5;
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum JointKind {
     /// The edge meets the partner's face.
     T,
     /// The edge meets the partner's support past its boundary: both grow and cross.
     L,
+}
+
+impl JointKind {
+    /// As in the report's `joints[].kind`.
+    pub fn name(self) -> &'static str {
+        match self {
+            JointKind::T => "t",
+            JointKind::L => "l",
+        }
+    }
 }
 
 /// A strip to grow from a free edge up to (and a little past) a partner patch.

@@ -10,7 +10,7 @@ use crate::pairing::FaceRole;
 use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote};
-use crate::patch::trim::{connected_sets, find_branches};
+use crate::patch::trim::{connected_sets, find_branches, keep_mask};
 use crate::report::{self, *};
 use crate::geom::inside::SolidMesh;
 use crate::stitch::{stitch, JointReport, PatchInfo};
@@ -74,15 +74,13 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
 
     let t = Instant::now();
     let fuzzy = pairings.iter().map(|p| p.tolerances.fuse).fold(f64::INFINITY, f64::min);
+    let fuzzy = if fuzzy.is_finite() { fuzzy } else { 0.0 };
     let fused: Fused = sidecar
-        .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy: if fuzzy.is_finite() { fuzzy } else { 0.0 }, split_internal: false })
+        .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy, split_internal: false })
         .map_err(kernel)?;
     let thickness: Vec<f64> = made.iter().map(|m| m.plan.thickness.mean).collect();
     let mut branches = find_branches(&fused, &thickness);
-    let mut keep = vec![true; fused.faces.len()];
-    for b in &branches {
-        keep[b.piece] = false;
-    }
+    let keep = keep_mask(fused.faces.len(), &branches);
     timings.trim = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -94,7 +92,6 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
             reach: pairings[m.solid - 1].tolerances.joint_reach,
         })
         .collect();
-    let fuzzy = if fuzzy.is_finite() { fuzzy } else { 0.0 };
     let meshes: Vec<SolidMesh> = part
         .solids
         .iter()

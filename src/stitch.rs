@@ -6,8 +6,8 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::geom::inside::SolidMesh;
-use crate::joint::{self, JointKind, Verdict};
-use crate::patch::trim::{find_branches, Branch};
+use crate::joint::{self, Verdict};
+use crate::patch::trim::{find_branches, keep_mask, Branch};
 use crate::sidecar::protocol::{CornerRequest, EdgeProbe, EdgeRef, Extended, Fused, Gathered, GatherPart, Probed, Request, StripRequest};
 use crate::sidecar::{Sidecar, SidecarError};
 
@@ -46,7 +46,6 @@ pub struct Stitched {
     /// Branches dropped in this pass (the overshoot of the strips, and crossings they made).
     pub branches: Vec<Branch>,
     pub joints: Vec<JointReport>,
-    pub strips: usize,
     pub free: FreeEdges,
 }
 
@@ -115,13 +114,12 @@ pub fn stitch(
             Verdict::Extend(x) => {
                 let mut ids = vec![patch + 1, x.partner + 1];
                 ids.sort_unstable();
-                planned.push((patch, StripRequest { edge, face, lengths: x.lengths }, (ids, kind_name(x.kind), "extended"), p));
+                planned.push((patch, StripRequest { edge, face, lengths: x.lengths }, (ids, x.kind.name(), "extended"), p));
             }
         }
     }
     // (patch, index among the faces of the extension's handle) of each made strip and corner.
     let mut strips: Vec<(usize, usize)> = Vec::new();
-    let mut made_strips = 0;
     let mut extended_handle = None;
     if !planned.is_empty() {
         let corners = corners(&planned, fuzzy);
@@ -139,7 +137,6 @@ pub fn stitch(
                 tally.add((key.0, key.1, "kernel_failed"), length);
             }
         }
-        made_strips = strips.len();
         for (&(patch, _), made) in corners.iter().zip(&extended.corners) {
             if made.area.is_some() {
                 strips.push((patch, strips.len()));
@@ -176,12 +173,9 @@ pub fn stitch(
         face.patch = order[face.patch];
     }
     let branches = find_branches(&again, &thickness);
-    let mut keep = vec![true; again.faces.len()];
-    for b in &branches {
-        keep[b.piece] = false;
-    }
+    let keep = keep_mask(again.faces.len(), &branches);
     let free = classify_free(sidecar, &again, &keep, patches, solids)?;
-    Ok(Stitched { fused: again, keep, branches, joints, strips: made_strips, free })
+    Ok(Stitched { fused: again, keep, branches, joints, free })
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
@@ -261,12 +255,5 @@ impl JointTally {
             .iter()
             .map(|((patches, kind, status), &(edges, length))| JointReport { patches: patches.clone(), kind, status, edges, length })
             .collect()
-    }
-}
-
-fn kind_name(kind: JointKind) -> &'static str {
-    match kind {
-        JointKind::T => "t",
-        JointKind::L => "l",
     }
 }

@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use crate::pairing::PairKind;
 use crate::report::PatchReport;
 use crate::sidecar::protocol::{Fused, Shells};
 use crate::stitch::{FreeEdges, JointReport};
@@ -18,36 +19,19 @@ pub struct Topology {
     pub components: usize,
     /// Edges shared by three or more faces (T- and X-joints).
     pub nonmanifold_edges: usize,
-    pub free_edges: Option<RoundedFree>,
+    pub free_edges: Option<FreeEdges>,
     pub patches: Vec<TopologyPatch>,
-    pub joints: Vec<TopologyJoint>,
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RoundedFree {
-    pub rim_edges: usize,
-    pub rim_length: f64,
-    pub open_edges: usize,
-    pub open_length: f64,
+    pub joints: Vec<JointReport>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TopologyPatch {
     pub id: usize,
-    pub kind: String,
+    pub kind: PairKind,
     pub source_faces: Vec<usize>,
     pub thickness: f64,
     pub area: f64,
     pub faces: usize,
-}
-
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct TopologyJoint {
-    pub patches: Vec<usize>,
-    pub kind: &'static str,
-    pub status: &'static str,
-    pub edges: usize,
-    pub length: f64,
 }
 
 /// Rounded to `digits` decimals; -0 becomes 0 so the text does not flicker.
@@ -69,10 +53,7 @@ pub fn summarise(
     let nonmanifold_edges =
         fused.edges.iter().filter(|e| e.faces.iter().filter(|&&f| keep[f]).count() >= 3).count();
     let faces = shells.faces.len();
-    let mut joints: Vec<TopologyJoint> = joints
-        .iter()
-        .map(|j| TopologyJoint { patches: j.patches.clone(), kind: j.kind, status: j.status, edges: j.edges, length: round(j.length, 2) })
-        .collect();
+    let mut joints: Vec<JointReport> = joints.iter().map(|j| JointReport { length: round(j.length, 2), ..j.clone() }).collect();
     joints.sort_by(|a, b| (&a.patches, a.kind, a.status).cmp(&(&b.patches, b.kind, b.status)));
     Topology {
         faces,
@@ -81,17 +62,12 @@ pub fn summarise(
         euler: shells.vertices as i64 - shells.edges as i64 + faces as i64,
         components,
         nonmanifold_edges,
-        free_edges: free.map(|f| RoundedFree {
-            rim_edges: f.rim_edges,
-            rim_length: round(f.rim_length, 2),
-            open_edges: f.open_edges,
-            open_length: round(f.open_length, 2),
-        }),
+        free_edges: free.map(|f| FreeEdges { rim_length: round(f.rim_length, 2), open_length: round(f.open_length, 2), ..f }),
         patches: patches
             .iter()
             .map(|p| TopologyPatch {
                 id: p.id,
-                kind: serde_json::to_value(p.kind).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default(),
+                kind: p.kind,
                 source_faces: p.source_faces.clone(),
                 thickness: round(p.thickness.mean, 3),
                 area: round(p.area, 1),
@@ -119,7 +95,7 @@ impl Topology {
         for p in &self.patches {
             out += &format!(
                 "patch {} {} t={:.3} area={:.1} faces={} source={:?}\n",
-                p.id, p.kind, p.thickness, p.area, p.faces, p.source_faces
+                p.id, p.kind.name(), p.thickness, p.area, p.faces, p.source_faces
             );
         }
         for j in &self.joints {

@@ -71,12 +71,15 @@ def require_non_negative(args: dict[str, Any], key: str) -> float:
     return value
 
 
-def require_point(args: dict[str, Any], key: str) -> tuple[float, float, float]:
-    value = args.get(key)
+def as_point(value: Any, what: str) -> tuple[float, float, float]:
     if not isinstance(value, list) or len(value) != 3:
-        raise BadArgs(f"`{key}` must be [x, y, z], got {value!r}")
-    x, y, z = (as_number(c, f"each component of `{key}`") for c in value)
+        raise BadArgs(f"{what} must be [x, y, z], got {value!r}")
+    x, y, z = (as_number(c, f"each component of {what}") for c in value)
     return x, y, z
+
+
+def require_point(args: dict[str, Any], key: str) -> tuple[float, float, float]:
+    return as_point(args.get(key), f"`{key}`")
 
 
 def require_direction(args: dict[str, Any], key: str) -> tuple[float, float, float]:

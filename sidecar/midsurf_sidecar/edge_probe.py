@@ -76,12 +76,14 @@ def sample_edge(face: TopoDS_Face, edge: TopoDS_Shape, samples: int) -> list[Edg
         outward = cross(t, normal)
         outward = scale(outward, 1.0 / norm(outward))
         out.append(EdgeSample(xyz(point), normal, outward))
-    _check_side(face, out)
+    if _runs_backwards(face, out):
+        out = [EdgeSample(s.point, s.normal, scale(s.outward, -1.0)) for s in out]
     return out
 
 
-def _check_side(face: TopoDS_Face, samples: list[EdgeSample]) -> None:
-    """Guards the orientation rule: a point a little inward of the middle sample must be on the face."""
+def _runs_backwards(face: TopoDS_Face, samples: list[EdgeSample]) -> bool:
+    """Guards the orientation rule: whether a point a little inward of the middle sample is off the face and
+    one a little outward on it (the rule got the side wrong)."""
     middle = samples[len(samples) // 2]
     tolerance = BRep_Tool.Tolerance_s(face)
     box = Bnd_Box()
@@ -91,9 +93,7 @@ def _check_side(face: TopoDS_Face, samples: list[EdgeSample]) -> None:
     outer = add_scaled(middle.point, middle.outward, step)
     state_in = BRepClass_FaceClassifier(face, gp_Pnt(*inner), tolerance).State()
     state_out = BRepClass_FaceClassifier(face, gp_Pnt(*outer), tolerance).State()
-    if state_in == TopAbs_OUT and state_out == TopAbs_IN:
-        for sample in samples:
-            object.__setattr__(sample, "outward", scale(sample.outward, -1.0))
+    return state_in == TopAbs_OUT and state_out == TopAbs_IN
 
 
 class TargetFaces:

@@ -11,16 +11,15 @@ from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepFill import BRepFill
+from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
+from OCP.collections import HArray1_gp_Pnt
 from OCP.GC import GC_MakeSegment
 from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
 from OCP.GeomAPI import GeomAPI_Interpolate
-from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
 from OCP.gp import gp_Pln, gp_Pnt, gp_Vec
-from OCP.TopAbs import TopAbs_FACE
+from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD
 from OCP.TopExp import TopExp_Explorer
-from OCP.collections import HArray1_gp_Pnt
-from OCP.TopAbs import TopAbs_FORWARD
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
 from .edge_probe import sample_edge
 from .errors import KernelError
@@ -28,7 +27,6 @@ from .face_measure import diagonal
 from .face_normals import OutwardNormals
 from .face_point import interior_point
 from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
-
 
 # Outward directions (unit vectors) and lengths equal to this (relative) share are one sweep.
 PARALLEL = 1e-6
@@ -43,7 +41,7 @@ def strip(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float]) -> TopoDS
 
 
 def _oriented_like(made: TopoDS_Face, normal: Vec) -> TopoDS_Face:
-    point, own = interior_point(OutwardNormals(made), diagonal(made))
+    _, own = interior_point(OutwardNormals(made), diagonal(made))
     return made if dot(own, normal) >= 0.0 else TopoDS.Face(made.Reversed())
 
 
@@ -119,12 +117,16 @@ def _plane_of(face: TopoDS_Face) -> gp_Pln | None:
     return surface.Plane() if surface.GetType() == GeomAbs_Plane else None
 
 
-def _planar_quad(plane: gp_Pln, points: list[Vec]) -> TopoDS_Face:
+def _closed_polygon(points: list[Vec]) -> TopoDS_Wire:
     polygon = BRepBuilderAPI_MakePolygon()
     for p in points:
         polygon.Add(gp_Pnt(*p))
     polygon.Close()
-    maker = BRepBuilderAPI_MakeFace(plane, polygon.Wire(), True)
+    return polygon.Wire()
+
+
+def _planar_quad(plane: gp_Pln, points: list[Vec]) -> TopoDS_Face:
+    maker = BRepBuilderAPI_MakeFace(plane, _closed_polygon(points), True)
     if not maker.IsDone():
         raise KernelError("the planar strip could not be made")
     return maker.Face()
@@ -139,11 +141,7 @@ def corner(points: list[Vec], normal: Vec) -> TopoDS_Face:
 
 def _corner(points: list[Vec]) -> TopoDS_Face:
     v, a, c, b = points
-    polygon = BRepBuilderAPI_MakePolygon()
-    for p in points:
-        polygon.Add(gp_Pnt(*p))
-    polygon.Close()
-    planar = BRepBuilderAPI_MakeFace(polygon.Wire(), True)
+    planar = BRepBuilderAPI_MakeFace(_closed_polygon(points), True)
     if planar.IsDone():
         # A plane face where the quad is flat (always, on a planar patch): unify_same_domain merges it.
         return planar.Face()

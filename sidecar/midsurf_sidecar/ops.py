@@ -12,6 +12,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Compound
 from . import edge_probe, edge_strip, face_graph, mid_patch, patch_fuse, patch_unify, shells, step_io
 from .args import (
     as_number,
+    as_point,
     handle_list,
     index_list,
     optional_bool,
@@ -169,7 +170,7 @@ def extend_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     for j, entry in enumerate(args.get("corners", [])):
         if not isinstance(entry, dict) or not isinstance(entry.get("points"), list) or len(entry["points"]) != 4:
             raise BadArgs(f"corner {j} must be {{points: [4 points], normal}}, got {entry!r}")
-        points = [require_point({"p": p}, "p") for p in entry["points"]]
+        points = [as_point(p, f"corner {j}'s points") for p in entry["points"]]
         normal = require_direction(entry, "normal")
         try:
             made = edge_strip.corner(points, normal)

@@ -98,7 +98,8 @@ def _split_at_internal_edges(fused: TopoDS_Shape, patch_of: list[int], fuzzy: fl
             # plane, leaving slivers the fuzzy value folds (found on fwdesktop_top_cover).
             clipped = BRepAlgoAPI_Common(line, face)
             if clipped.IsDone():
-                tools.extend(indexed_map(clipped.Shape(), TopAbs_EDGE).FindKey(k + 1) for k in range(indexed_map(clipped.Shape(), TopAbs_EDGE).Size()))
+                pieces = indexed_map(clipped.Shape(), TopAbs_EDGE)
+                tools.extend(pieces.FindKey(k + 1) for k in range(pieces.Size()))
     if not tools:
         return fused, patch_of
     splitter = BRepAlgoAPI_Splitter()

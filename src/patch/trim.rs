@@ -99,6 +99,15 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
     candidates.into_iter().zip(anchored).filter_map(|(c, a)| if a { None } else { c }).collect()
 }
 
+/// Which pieces stay once `branches` are dropped.
+pub fn keep_mask(pieces: usize, branches: &[Branch]) -> Vec<bool> {
+    let mut keep = vec![true; pieces];
+    for b in branches {
+        keep[b.piece] = false;
+    }
+    keep
+}
+
 /// Groups the kept pieces into connected sets (through edges shared by two kept pieces), each sorted, in
 /// order of their lowest piece: one shell each.
 pub fn connected_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
