@@ -77,6 +77,14 @@ pub struct RunCli {
     /// Where to write the topology summary as stable text (counts, free edges, patches, joints).
     #[arg(long)]
     pub summary: Option<PathBuf>,
+    /// Where to write a CSV of the patches (patch, solid, kind, thickness, area, faces, source faces): the
+    /// thickness per patch for tools that do not read JSON.
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+    /// Where to write a binary glTF (.glb) preview of the mid-surface, faces coloured by thickness band as in
+    /// the STEP (legend in the report), for any glTF viewer.
+    #[arg(long)]
+    pub preview: Option<PathBuf>,
     /// Leave the time per stage out of the report, so that two runs give byte-identical reports.
     #[arg(long)]
     pub no_timings: bool,
@@ -124,6 +132,8 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             output: r.output,
             report: r.report,
             summary: r.summary,
+            csv: r.csv,
+            preview: r.preview,
             params: r.pairing.params(),
             timings: !r.no_timings,
         }),

@@ -184,3 +184,47 @@ pub fn round(x: f64, digits: i32) -> f64 {
     let k = 10f64.powi(digits);
     (x * k).round() / k
 }
+
+/// The patches as CSV, one row per patch in id order: `patch,solid,kind,thickness,area,faces,source_faces`
+/// (thickness in mm to 0.001, area in mm² to 0.01, source faces 0-based and separated by spaces).
+pub fn patches_csv(patches: &[PatchReport]) -> String {
+    let mut out = String::from("patch,solid,kind,thickness,area,faces,source_faces\n");
+    for p in patches {
+        let sources: Vec<String> = p.source_faces.iter().map(|f| f.to_string()).collect();
+        out += &format!(
+            "{},{},{},{:.3},{:.2},{},{}\n",
+            p.id,
+            p.solid,
+            p.kind.name(),
+            p.thickness.mean,
+            p.area,
+            p.faces,
+            sources.join(" ")
+        );
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_has_a_header_and_a_row_per_patch() {
+        let patch = |id, kind, t: f64, sources: Vec<usize>| PatchReport {
+            id,
+            solid: 1,
+            group: 0,
+            kind,
+            source_faces: sources,
+            thickness: Thickness { mean: t, min: t, max: t },
+            area: 12.345,
+            faces: 2,
+        };
+        let csv = patches_csv(&[patch(1, PairKind::Parallel, 2.0, vec![3, 7]), patch(2, PairKind::Draft, 1.25, vec![0])]);
+        assert_eq!(
+            csv,
+            "patch,solid,kind,thickness,area,faces,source_faces\n1,1,parallel,2.000,12.35,2,3 7\n2,1,draft,1.250,12.35,2,0\n"
+        );
+    }
+}

@@ -21,6 +21,8 @@ pub struct RunArgs {
     pub output: PathBuf,
     pub report: Option<PathBuf>,
     pub summary: Option<PathBuf>,
+    pub csv: Option<PathBuf>,
+    pub preview: Option<PathBuf>,
     pub params: PairingParams,
     pub timings: bool,
 }
@@ -38,6 +40,8 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let step_out = crate::output::Pending::new(&args.output, &args.input)?;
     let report_out = args.report.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
     let summary_out = args.summary.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
+    let csv_out = args.csv.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
+    let preview_out = args.preview.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
     let mut sidecar = part::start_sidecar(&args.input)?;
     let kernel = |e| Error::Sidecar { path: args.input.clone(), error: e };
 
@@ -140,9 +144,12 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
             FaceAttributes { face: j, name: format!("patch {} t={t:.3}", k + 1), color: report::band_color(&legend, t), thickness: t }
         })
         .collect();
-    let temp = step_out.temp.to_str().ok_or_else(|| Error::output(&args.output, "path is not valid UTF-8"))?;
+    let utf8 = |p: &crate::output::Pending| {
+        p.temp.to_str().map(str::to_string).ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
+    };
+    let preview = preview_out.as_ref().map(utf8).transpose()?;
     sidecar
-        .call::<Written>(&Request::WriteStep { path: temp.to_string(), handle: shells.handle, faces })
+        .call::<Written>(&Request::WriteStep { path: utf8(&step_out)?, handle: shells.handle, faces, preview })
         .map_err(kernel)?;
     sidecar.shutdown();
     timings.write = t.elapsed().as_secs_f64();
@@ -177,8 +184,11 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     if let Some(pending) = &summary_out {
         pending.write(report.topology.text().as_bytes())?;
     }
+    if let Some(pending) = &csv_out {
+        pending.write(report::patches_csv(&report.patches).as_bytes())?;
+    }
     step_out.commit()?;
-    for pending in [report_out, summary_out].into_iter().flatten() {
+    for pending in [report_out, summary_out, csv_out, preview_out].into_iter().flatten() {
         pending.commit()?;
     }
     eprintln!("{}", summary_line(&args.output, &report));

@@ -37,6 +37,36 @@ fn flat_plate_gives_one_patch_at_half_thickness() {
 }
 
 #[test]
+fn csv_and_preview_beside_the_step() {
+    let dir = scratch("run-csv");
+    let (out, rep, csv, glb) = (dir.join("mid.step"), dir.join("r.json"), dir.join("p.csv"), dir.join("p.glb"));
+    let o = run(
+        "fixtures/open_box_ribs.step",
+        &out,
+        &rep,
+        &["--csv", csv.to_str().unwrap(), "--preview", glb.to_str().unwrap()],
+    );
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let report = read_json(&rep);
+    let csv = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("patch,solid,kind,thickness,area,faces,source_faces"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let patches = report["patches"].as_array().unwrap();
+    assert_eq!(rows.len(), patches.len());
+    for (row, patch) in rows.iter().zip(patches) {
+        assert_eq!(row[0], patch["id"].to_string());
+        let t: f64 = row[3].parse().unwrap();
+        assert!((t - patch["thickness"]["mean"].as_f64().unwrap()).abs() < 5e-4, "{row:?}");
+        let area: f64 = row[4].parse().unwrap();
+        assert!((area - patch["area"].as_f64().unwrap()).abs() < 5e-3, "{row:?}");
+    }
+    let glb = std::fs::read(&glb).unwrap();
+    assert_eq!(&glb[..4], b"glTF");
+    assert_eq!(u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize, glb.len());
+}
+
+#[test]
 fn no_pairs_gives_an_empty_valid_output_and_exit_1() {
     let dir = scratch("run-nopairs");
     let (out, rep) = (dir.join("mid.step"), dir.join("report.json"));

@@ -104,7 +104,10 @@ def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     path = require_str(args, "path")
     shape = store.get(require_handle(args))
     faces = [_face_attributes(entry) for entry in require_list(args, "faces")]
-    return {"path": path, "bytes": step_io.write_step(path, shape, faces)}
+    preview = args.get("preview")
+    if preview is not None and not isinstance(preview, str):
+        raise BadArgs(f"`preview` must be a path string, got {preview!r}")
+    return {"path": path, "bytes": step_io.write_step(path, shape, faces, preview)}
 
 
 def _face_attributes(entry: Any) -> step_io.FaceAttributes:

@@ -4,13 +4,20 @@ import os
 from dataclasses import dataclass
 
 from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
+from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Tool
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.Interface import Interface_Static
+from OCP.Message import Message_ProgressRange
 from OCP.Quantity import Quantity_Color, Quantity_TOC_sRGB
+from OCP.RWGltf import RWGltf_CafWriter
+from OCP.RWMesh import RWMesh_CoordinateSystem_Zup
 from OCP.STEPCAFControl import STEPCAFControl_Controller, STEPCAFControl_Writer
 from OCP.STEPControl import STEPControl_AsIs, STEPControl_Reader
-from OCP.TCollection import TCollection_ExtendedString, TCollection_HAsciiString
+from OCP.collections import IndexedDataMap_TCollection_AsciiString_TCollection_AsciiString as FileInfo
+from OCP.TCollection import TCollection_AsciiString, TCollection_ExtendedString, TCollection_HAsciiString
 from OCP.TDataStd import TDataStd_Name, TDataStd_NamedData
 from OCP.TDocStd import TDocStd_Document
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID, TopAbs_VERTEX
@@ -85,11 +92,13 @@ def _count(n: int, noun: str) -> str:
     return f"{n} {noun if n == 1 else plural}"
 
 
-def write_step(path: str, shape: TopoDS_Shape, faces: list[FaceAttributes]) -> int:
-    """Writes `shape` with XCAF attributes to exactly `path`; returns the file size in bytes."""
-    directory = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(directory):
-        raise OpError(f"cannot write {path}: directory {directory} does not exist", "write_failed")
+def write_step(path: str, shape: TopoDS_Shape, faces: list[FaceAttributes], preview: str | None = None) -> int:
+    """Writes `shape` with XCAF attributes to exactly `path` (and, with `preview`, a GLB of the same document
+    there); returns the STEP file size in bytes."""
+    for target in [path] + ([preview] if preview else []):
+        directory = os.path.dirname(os.path.abspath(target))
+        if not os.path.isdir(directory):
+            raise OpError(f"cannot write {target}: directory {directory} does not exist", "write_failed")
 
     STEPCAFControl_Controller.Init_s()
     # Without this the writer drops the names of sub-shape (face) labels.
@@ -111,7 +120,26 @@ def write_step(path: str, shape: TopoDS_Shape, faces: list[FaceAttributes]) -> i
     status = writer.Write(path)
     if status != IFSelect_RetDone or not os.path.isfile(path):
         raise OpError(f"STEP writer returned {status.name} for {path}", "write_failed")
+    if preview:
+        # After the STEP, so the triangulation made here cannot change what the STEP writer sees.
+        _write_glb(preview, doc, shape)
     return os.path.getsize(path)
+
+
+def _write_glb(path: str, doc: TDocStd_Document, shape: TopoDS_Shape) -> None:
+    """A binary glTF of the document, faces coloured as in the STEP: a preview for any glTF viewer."""
+    box = Bnd_Box()
+    BRepBndLib.Add_s(shape, box)
+    diagonal = 1.0 if box.IsVoid() else box.CornerMin().Distance(box.CornerMax())
+    # A chordal deflection of 1/1000 of the part's size: smooth enough to look at, small enough to open.
+    BRepMesh_IncrementalMesh(shape, max(diagonal * 1e-3, 1e-4), False, 0.3, False)
+    writer = RWGltf_CafWriter(TCollection_AsciiString(path), True)
+    # glTF is Y-up in metres; STEP here is Z-up in millimetres.
+    converter = writer.ChangeCoordinateSystemConverter()
+    converter.SetInputLengthUnit(0.001)
+    converter.SetInputCoordinateSystem(RWMesh_CoordinateSystem_Zup)
+    if not writer.Perform(doc, FileInfo(), Message_ProgressRange()):
+        raise OpError(f"the glTF writer could not write {path}", "write_failed")
 
 
 def _attach_attributes(doc: TDocStd_Document, shape: TopoDS_Shape, faces: list[FaceAttributes]) -> None:

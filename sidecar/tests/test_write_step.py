@@ -137,3 +137,39 @@ def test_empty_compound_gives_a_step_without_geometry(client, tmp_path):
     path = tmp_path / "empty.step"
     assert client.ok("write_step", path=str(path), handle=handle, faces=[])["bytes"] > 0
     assert client.err("load_step", path=str(path))["code"] == "no_solid"
+
+
+def read_glb(path):
+    """The JSON chunk of a binary glTF file, after checking its header and chunk layout."""
+    import json
+    import struct
+
+    data = path.read_bytes()
+    magic, version, length = struct.unpack_from("<4sII", data, 0)
+    assert (magic, version, length) == (b"glTF", 2, len(data))
+    chunk_length, chunk_type = struct.unpack_from("<I4s", data, 12)
+    assert chunk_type == b"JSON"
+    return json.loads(data[20 : 20 + chunk_length])
+
+
+def test_preview_is_a_glb_with_the_face_colours(client, tmp_path):
+    handle = client.load(box(), tmp_path)
+    step, glb = tmp_path / "out.step", tmp_path / "out.glb"
+    faces = [{"face": i, "name": f"patch {i} t=1.000", "color": [0.1 * i, 0.5, 0.9], "thickness": 1.0} for i in range(6)]
+    client.ok("write_step", path=str(step), handle=handle, faces=faces, preview=str(glb))
+    gltf = read_glb(glb)
+    colours = sorted(tuple(round(c, 3) for c in m["pbrMetallicRoughness"]["baseColorFactor"][:3]) for m in gltf["materials"])
+    # glTF stores linear RGB: compare with the sRGB colours given, converted.
+    expected = sorted(tuple(round(Quantity_Color.Convert_sRGB_To_LinearRGB_s(c), 3) for c in (0.1 * i, 0.5, 0.9)) for i in range(6))
+    assert len(colours) == len(expected)
+    for got, want in zip(colours, expected):
+        assert got == pytest.approx(want, abs=2e-3)
+    triangles = sum(p["indices"] is not None for m in gltf["meshes"] for p in m["primitives"])
+    assert triangles >= 6
+
+
+def test_preview_in_a_missing_directory_is_write_failed(client, tmp_path):
+    handle = client.load(box(), tmp_path)
+    err = client.err("write_step", path=str(tmp_path / "a.step"), handle=handle, faces=[], preview=str(tmp_path / "no" / "a.glb"))
+    assert err["code"] == "write_failed"
+    assert not (tmp_path / "a.step").exists()

@@ -69,7 +69,14 @@ pub enum Request {
     ExtendEdges { handle: u64, strips: Vec<StripRequest>, corners: Vec<CornerRequest> },
     /// With `unify` (a fuzzy tolerance), the faces are joined and same-surface faces merged.
     Gather { parts: Vec<GatherPart>, #[serde(skip_serializing_if = "Option::is_none")] unify: Option<f64> },
-    WriteStep { path: String, handle: u64, faces: Vec<FaceAttributes> },
+    /// `preview`: also a binary glTF of the same faces and colours at that path.
+    WriteStep {
+        path: String,
+        handle: u64,
+        faces: Vec<FaceAttributes>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        preview: Option<String>,
+    },
     Free { handles: Vec<u64> },
     Shutdown {},
 }
@@ -280,8 +287,13 @@ mod tests {
                         color: [1.0, 0.5, 0.0],
                         thickness: 2.0,
                     }],
+                    preview: None,
                 },
                 r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[{"face":0,"name":"patch 1 t=2.000","color":[1.0,0.5,0.0],"thickness":2.0}]}}"#,
+            ),
+            (
+                Request::WriteStep { path: "o.step".into(), handle: 7, faces: vec![], preview: Some("o.glb".into()) },
+                r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"preview":"o.glb"}}"#,
             ),
             (
                 Request::MakePatch { handle: 2, faces: vec![4, 5], placement: Placement::Offset(-1.0) },
