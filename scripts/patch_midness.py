@@ -85,7 +85,25 @@ def main(inp, out):
             named = float(name.split(" t=")[1])
             total += a
             agree += a if abs(t - named) <= 0.02 * named else 0.0
-    print(f"thickness within 2% of the measured median: {agree / total * 100 if total else 0:.1f}% of the named area")
+    print(f"faces: thickness within 2% of the measured median: {agree / total * 100 if total else 0:.1f}% of the named area")
+    # The same per patch (all samples of a patch's faces): what the report's thickness per patch claims.
+    patch_of = {f: name.split(" t=")[0] for f, name in names.items() if " t=" in name}
+    named_t = {name.split(" t=")[0]: float(name.split(" t=")[1]) for name in names.values() if " t=" in name}
+    sample_patch = np.array([patch_of.get(int(f), "") for f in fo[tidx]])
+    agree = total = 0.0
+    patches_ok = patches = 0
+    for patch, named in named_t.items():
+        m = (sample_patch == patch) & ok
+        if m.sum() < 3:
+            continue
+        a = sum(area[f] for f, p in patch_of.items() if p == patch)
+        good = abs(float(np.median((up + dn)[m])) - named) <= 0.02 * named
+        total += a
+        agree += a if good else 0.0
+        patches += 1
+        patches_ok += good
+    print(f"patches: median measured thickness within 2% of the reported one: {patches_ok}/{patches} patches, "
+          f"{agree / total * 100 if total else 0:.1f}% of the named area")
     for r in rows[: int(sys.argv[3]) if len(sys.argv) > 3 else 25]:
         print(f"face {r[1]:4d}  {r[2]:<22} area {r[3]:10.2f}  mid {r[0]:.3f}  t_measured {r[4]:.3f}")
 

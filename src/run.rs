@@ -14,7 +14,7 @@ use crate::patch::trim::{connected_sets, find_branches, keep_mask};
 use crate::report::{self, *};
 use crate::geom::inside::SolidMesh;
 use crate::stitch::{stitch, JointReport, PatchInfo};
-use crate::sidecar::protocol::{FaceAttributes, Fused, MadePatch, Request, Shells, Written};
+use crate::sidecar::protocol::{Clip, FaceAttributes, Fused, MadePatch, Request, Shells, Written};
 
 pub struct RunArgs {
     pub input: PathBuf,
@@ -61,7 +61,16 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         let (plans, notes) = plan_patches(&solid.graph, &sp.pairing);
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
-            let request = Request::MakePatch { handle: solid.handle, faces: plan.faces.clone(), placement: plan.placement.clone() };
+            let request = Request::MakePatch {
+                handle: solid.handle,
+                faces: plan.faces.clone(),
+                placement: plan.placement.clone(),
+                clip: Some(Clip {
+                    partners: plan.partners.clone(),
+                    fuzzy: sp.tolerances.fuse,
+                    narrow: sp.tolerances.clip_narrow,
+                }),
+            };
             match sidecar.call::<MadePatch>(&request) {
                 Ok(patch) => made.push(Made { solid: i + 1, plan, handle: patch.handle }),
                 Err(e) if e.code().is_some() => warnings.push(Warning {

@@ -28,6 +28,10 @@ pub struct Tolerances {
     /// Farthest a free edge of a patch grows to meet another patch: 1.5 t_max covers a T-joint's half wall
     /// plus a root fillet of up to a wall's thickness, and an L-joint's half wall plus overshoot.
     pub joint_reach: f64,
+    /// A mid-patch is clipped to its partners' footprint, but uncovered pieces up to this wide stay: t_max
+    /// is the widest band a crossing wall or a corner overshoot leaves, which trimming and the joints handle;
+    /// wider uncovered regions lie over other material (a boss, a thicker wall) and are cut away.
+    pub clip_narrow: f64,
 }
 
 impl Tolerances {
@@ -42,6 +46,7 @@ impl Tolerances {
             freeform_spread: 0.15,
             fuse: t_max * 1e-4,
             joint_reach: t_max * 1.5,
+            clip_narrow: t_max,
         }
     }
 }

@@ -2,6 +2,7 @@
 a plane; the patch is a compound of the new faces in request order."""
 
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
 from OCP.BRep import BRep_Builder
@@ -9,6 +10,7 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
 from .errors import OpError, one_line
+from .face_clip import clip_to_partners
 from .face_measure import measure
 from .face_offset import offset_face
 from .face_projection import project_face
@@ -18,29 +20,46 @@ from .vectors import Vec
 FaceMaker = Callable[[TopoDS_Face], TopoDS_Face]
 
 
-def offset_patch(solid: TopoDS_Shape, face_ids: list[int], distance: float) -> tuple[TopoDS_Compound, list]:
-    return _patch(indexed_map(solid, TopAbs_FACE), face_ids, lambda face: offset_face(face, distance))
+@dataclass(frozen=True)
+class Clip:
+    """Partner faces per reference face (same order as the request's faces), the fuzzy tolerance, and the
+    width up to which uncovered pieces stay (see face_clip)."""
+
+    partners: list[list[int]]
+    fuzzy: float
+    narrow: float
+
+
+def offset_patch(
+    solid: TopoDS_Shape, face_ids: list[int], distance: float, clip: Clip | None = None
+) -> tuple[TopoDS_Compound, list]:
+    return _patch(indexed_map(solid, TopAbs_FACE), face_ids, lambda face: offset_face(face, distance), clip)
 
 
 def projected_patch(
-    solid: TopoDS_Shape, face_ids: list[int], origin: Vec, normal: Vec
+    solid: TopoDS_Shape, face_ids: list[int], origin: Vec, normal: Vec, clip: Clip | None = None
 ) -> tuple[TopoDS_Compound, list]:
-    return _patch(indexed_map(solid, TopAbs_FACE), face_ids, lambda face: project_face(face, origin, normal))
+    return _patch(indexed_map(solid, TopAbs_FACE), face_ids, lambda face: project_face(face, origin, normal), clip)
 
 
 def _patch(
-    face_map: IndexedShapeMap, face_ids: list[int], make: FaceMaker
+    face_map: IndexedShapeMap, face_ids: list[int], make: FaceMaker, clip: Clip | None
 ) -> tuple[TopoDS_Compound, list[dict[str, Any]]]:
-    """(compound of the new faces, the reply's `faces`); OpError `patch_failed` naming the face."""
+    """(compound of the new faces, the reply's `faces`: one entry per face made, several per source face when
+    a clip splits it); OpError `patch_failed` naming the face."""
     builder = BRep_Builder()
     compound = TopoDS_Compound()
     builder.MakeCompound(compound)
     described = []
-    for face_id in face_ids:
+    for k, face_id in enumerate(face_ids):
         try:
-            new_face = make(TopoDS.Face(face_map.FindKey(face_id + 1)))
-            described.append({"source": face_id, **measure(new_face)})
+            new_faces = [make(TopoDS.Face(face_map.FindKey(face_id + 1)))]
+            if clip is not None and clip.partners[k]:
+                partners = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.partners[k]]
+                new_faces = clip_to_partners(new_faces[0], partners, clip.fuzzy, clip.narrow)
+            described.extend({"source": face_id, **measure(f)} for f in new_faces)
         except Exception as exc:  # OpError from our checks, Standard_Failure from OCCT
             raise OpError(f"face {face_id}: {one_line(exc)}", "patch_failed") from exc
-        builder.Add(compound, new_face)
+        for f in new_faces:
+            builder.Add(compound, f)
     return compound, described

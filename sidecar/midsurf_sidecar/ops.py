@@ -65,13 +65,29 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         raise BadArgs("`faces` must list at least one face")
     if ("offset" in args) == ("plane" in args):
         raise BadArgs("make_patch needs exactly one of `offset` (mm) and `plane` ({origin, normal})")
+    clip = _clip(args, count, len(face_ids))
     if "offset" in args:
-        patch, faces = mid_patch.offset_patch(solid, face_ids, require_number(args, "offset"))
+        patch, faces = mid_patch.offset_patch(solid, face_ids, require_number(args, "offset"), clip)
     else:
         plane = require_object(args, "plane")
         origin, normal = require_point(plane, "origin"), require_direction(plane, "normal")
-        patch, faces = mid_patch.projected_patch(solid, face_ids, origin, normal)
+        patch, faces = mid_patch.projected_patch(solid, face_ids, origin, normal, clip)
     return {"handle": store.put(patch), "faces": faces}
+
+
+def _clip(args: dict[str, Any], count: int, faces: int) -> mid_patch.Clip | None:
+    """The optional `clip`: {partners: [[face id]] per requested face, fuzzy, narrow}."""
+    if "clip" not in args:
+        return None
+    clip = require_object(args, "clip")
+    partners = require_list(clip, "partners")
+    if len(partners) != faces:
+        raise BadArgs(f"clip.partners has {len(partners)} lists for {faces} faces: give one list per face")
+    return mid_patch.Clip(
+        [index_list(p, count, "partner face", "the solid") for p in partners],
+        require_non_negative(clip, "fuzzy"),
+        require_non_negative(clip, "narrow"),
+    )
 
 
 def fuse(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:

@@ -289,3 +289,39 @@ def test_bad_arguments(client, tmp_path, args, needle):
 @pytest.mark.parametrize("handle", [0, -1, 99, "1"])
 def test_bad_handles(client, handle):
     assert client.err("make_patch", handle=handle, faces=[0], offset=-1.0)["code"] == "bad_args"
+
+
+# A step in an extruded profile: the bottom (y = 0, x 0..100) faces a 2 mm top over x 60..100 and a 5 mm top
+# over x 0..60.
+STEP_PROFILE = [(0.0, 0.0), (100.0, 0.0), (100.0, 2.0), (60.0, 2.0), (60.0, 5.0), (0.0, 5.0)]
+
+
+def test_clip_keeps_the_footprint_of_the_partners(client, tmp_path):
+    from shapes import extrude_polygon
+
+    handle = client.load(extrude_polygon(STEP_PROFILE, 30.0), tmp_path)
+    g = graph(client, handle)
+    bottom = face_with(g, "plane", lambda f: f["normal"][1] < -0.99)["id"]
+    thin_top = face_with(g, "plane", lambda f: f["normal"][1] > 0.99 and f["centroid"][0] > 60)["id"]
+    thick_top = face_with(g, "plane", lambda f: f["normal"][1] > 0.99 and f["centroid"][0] < 60)["id"]
+    clip = {"partners": [[thin_top]], "fuzzy": 1e-6, "narrow": 2.0}
+    ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
+    assert [f["source"] for f in ok["faces"]] == [bottom]
+    assert ok["faces"][0]["area"] == pytest.approx(40.0 * 30.0)
+    assert ok["faces"][0]["centroid"] == pytest.approx([80.0, 1.0, 15.0])
+    # Both partners cover the whole bottom: nothing to clip, the face is left as offset.
+    # An uncovered band no wider than `narrow` stays (a 60 x 30 band is 2 x 1800 / 180 = 20 wide).
+    clip = {"partners": [[thin_top]], "fuzzy": 1e-6, "narrow": 20.5}
+    ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
+    assert ok["faces"][0]["area"] == pytest.approx(100.0 * 30.0)
+    clip = {"partners": [[thin_top, thick_top]], "fuzzy": 1e-6, "narrow": 2.0}
+    ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
+    assert ok["faces"][0]["area"] == pytest.approx(100.0 * 30.0)
+    (face,) = patch_faces(client, ok["handle"])
+    assert indexed_map(face, TopAbs_VERTEX).Size() == 4
+
+
+def test_clip_needs_one_partner_list_per_face(client, tmp_path):
+    handle = client.load(box(40, 40, 5), tmp_path)
+    err = client.err("make_patch", handle=handle, faces=[0, 1], offset=-1.0, clip={"partners": [[2]], "fuzzy": 0.0, "narrow": 1.0})
+    assert err["code"] == "bad_args" and "one list per face" in err["message"]

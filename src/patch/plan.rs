@@ -22,6 +22,17 @@ pub struct PatchPlan {
     #[serde(skip)]
     pub placement: Placement,
     pub thickness: Thickness,
+    /// Per reference face (same order), the faces it pairs with: the patch is clipped to their footprint.
+    #[serde(skip)]
+    pub partners: Vec<Vec<FaceId>>,
+}
+
+/// The other face of each pair of `face`, sorted.
+fn partners_of(face: FaceId, pairs: &[&Pair]) -> Vec<FaceId> {
+    let mut out: Vec<FaceId> = pairs.iter().map(|p| if p.faces[0] == face { p.faces[1] } else { p.faces[0] }).collect();
+    out.sort_unstable();
+    out.dedup();
+    out
 }
 
 /// Reference faces of one group whose thicknesses differ by less than this share are offset together.
@@ -103,24 +114,27 @@ pub fn plan_patches(graph: &FaceGraph, pairing: &Pairing) -> (Vec<PatchPlan>, Ve
             continue;
         }
         // Cluster reference faces by their own mean thickness.
-        let mut clusters: Vec<(Thickness, Vec<FaceId>)> = Vec::new();
+        let mut clusters: Vec<(Thickness, Vec<FaceId>, Vec<Vec<FaceId>>)> = Vec::new();
         for (face, pairs) in &per_face {
             let t = combined(pairs);
-            match clusters.iter_mut().find(|(ct, _)| (ct.mean - t.mean).abs() <= SAME_THICKNESS * ct.mean) {
-                Some((ct, faces)) => {
+            let partners = partners_of(*face, pairs);
+            match clusters.iter_mut().find(|(ct, _, _)| (ct.mean - t.mean).abs() <= SAME_THICKNESS * ct.mean) {
+                Some((ct, faces, others)) => {
                     *ct = Thickness { mean: ct.mean, min: ct.min.min(t.min), max: ct.max.max(t.max) };
                     faces.push(*face);
+                    others.push(partners);
                 }
-                None => clusters.push((t, vec![*face])),
+                None => clusters.push((t, vec![*face], vec![partners])),
             }
         }
-        for (thickness, faces) in clusters {
+        for (thickness, faces, partners) in clusters {
             plans.push(PatchPlan {
                 group: group.id,
                 kind: group.kind,
                 faces,
                 placement: Placement::Offset(-0.5 * thickness.mean),
                 thickness,
+                partners,
             });
         }
     }
@@ -175,6 +189,7 @@ fn draft_plan(graph: &FaceGraph, group: usize, face: FaceId, pairs: &[&Pair]) ->
         faces: vec![face],
         placement: Placement::Plane { origin: origin.to_array(), normal: normal.to_array() },
         thickness: combined(pairs),
+        partners: vec![partners_of(face, pairs)],
     }
 }
 

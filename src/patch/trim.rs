@@ -5,7 +5,9 @@
 //! when it touches another patch (a crossing line), is not the largest piece of its patch, and every point
 //! of its boundary lies within 0.75 x the crossing patch's thickness of the crossing lines (the overshoot is
 //! half a thickness; the margin absorbs tilted walls). A piece joined to another piece of its own patch by an
-//! edge that no other patch shares is not hanging: a joint strip grown from the patch's edge stays.
+//! edge that no other patch shares (longer than the overshoot) is not hanging: a joint strip grown from the
+//! patch's edge stays. A hanging piece touching no other patch stays only when so joined to a piece that is
+//! not a branch: overshoot corners joined only to branches go with them.
 
 use glam::DVec3;
 use serde::Serialize;
@@ -49,9 +51,13 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
     let mut candidates: Vec<Option<Branch>> = vec![None; fused.faces.len()];
     // Pieces of the same patch sharing an edge no other patch crosses.
     let mut own_links: Vec<Vec<usize>> = vec![Vec::new(); fused.faces.len()];
+    // Hanging pieces that touch no other patch (an overshoot corner, the end of a strip): they anchor nothing
+    // and stay only when joined to a piece that does.
+    let mut loose = vec![false; fused.faces.len()];
     for (i, face) in fused.faces.iter().enumerate() {
         let mut crossing: Vec<usize> = Vec::new();
         let mut lines: Vec<&[DVec3]> = Vec::new();
+        let mut own: Vec<usize> = Vec::new();
         let mut hanging = false;
         for &e in &face.edges {
             let edge = &fused.edges[e];
@@ -61,19 +67,33 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
                 crossing.extend(others);
                 lines.push(&edge.points);
             } else if edge.faces.len() > 1 {
-                own_links[i].extend(edge.faces.iter().copied().filter(|&g| g != i));
+                own.push(e);
             } else {
                 hanging = true;
             }
         }
-        // A piece closed in by crossing lines all round (a floor between walls) is not a branch, however
-        // narrow: a branch hangs past the crossing, by a free edge or with other overshoot pieces.
-        if largest[face.patch].map(|(_, j)| j) == Some(i) || crossing.is_empty() || !(hanging || !own_links[i].is_empty()) {
-            continue;
-        }
         crossing.sort_unstable();
         crossing.dedup();
         let limit = BRANCH_WIDTH * crossing.iter().map(|&p| thickness[p]).fold(0.0, f64::max);
+        for e in own {
+            let edge = &fused.edges[e];
+            if edge.length < limit {
+                // Shorter than an overshoot: where the crossing line stops a little before the strip does, the
+                // stub between the two is part of the cut, not what joins the piece to its patch.
+                lines.push(&edge.points);
+            } else {
+                own_links[i].extend(edge.faces.iter().copied().filter(|&g| g != i));
+            }
+        }
+        if largest[face.patch].map(|(_, j)| j) == Some(i) || !(hanging || !own_links[i].is_empty()) {
+            // The main piece, or one closed in by crossing lines all round (a floor between walls): however
+            // narrow, a branch hangs past the crossing, by a free edge or with other overshoot pieces.
+            continue;
+        }
+        if crossing.is_empty() {
+            loose[i] = hanging;
+            continue;
+        }
         let width = face
             .edges
             .iter()
@@ -86,7 +106,7 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
     }
     // A narrow piece joined (through other narrow pieces) to a piece of its patch that is not narrow continues
     // the patch (a joint strip grown from its edge): only the rest hang past crossings.
-    let mut anchored: Vec<bool> = candidates.iter().map(Option::is_none).collect();
+    let mut anchored: Vec<bool> = candidates.iter().zip(&loose).map(|(c, &l)| c.is_none() && !l).collect();
     let mut queue: Vec<usize> = (0..anchored.len()).filter(|&i| anchored[i]).collect();
     while let Some(i) = queue.pop() {
         for &j in &own_links[i] {
@@ -94,6 +114,11 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
                 anchored[j] = true;
                 queue.push(j);
             }
+        }
+    }
+    for (i, face) in fused.faces.iter().enumerate() {
+        if loose[i] && !anchored[i] {
+            candidates[i] = Some(Branch { piece: i, patch: face.patch, area: face.area, width: 0.0, crossing: Vec::new() });
         }
     }
     candidates.into_iter().zip(anchored).filter_map(|(c, a)| if a { None } else { c }).collect()
@@ -211,6 +236,35 @@ mod tests {
         fused.faces[1].edges.push(5);
         let pieces: Vec<usize> = find_branches(&fused, &[2.0, 2.0]).iter().map(|b| b.piece).collect();
         assert_eq!(pieces, vec![3]);
+    }
+
+    #[test]
+    fn a_loose_corner_joined_only_to_a_branch_goes_with_it() {
+        // Piece 4 of patch 0 touches no other patch: an overshoot corner hanging off branch 1 only.
+        let mut fused = l_corner();
+        fused.faces.push(face(0, 1.0, vec![5, 6]));
+        fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
+        fused.edges.push(edge(vec![4], DVec3::new(0.0, 41.0, 1.0), DVec3::new(1.0, 41.0, 1.0)));
+        fused.faces[1].edges.push(5);
+        let pieces: Vec<usize> = find_branches(&fused, &[2.0, 2.0]).iter().map(|b| b.piece).collect();
+        assert_eq!(pieces, vec![1, 3, 4]);
+        // Joined to the main piece instead (by an edge longer than the overshoot), it stays.
+        fused.edges[5] = edge(vec![0, 4], DVec3::new(1.0, 40.0, 1.0), DVec3::new(3.0, 40.0, 1.0));
+        fused.faces[1].edges.pop();
+        fused.faces[0].edges.push(5);
+        let pieces: Vec<usize> = find_branches(&fused, &[2.0, 2.0]).iter().map(|b| b.piece).collect();
+        assert_eq!(pieces, vec![1, 3]);
+    }
+
+    #[test]
+    fn a_stub_shorter_than_the_overshoot_does_not_anchor() {
+        // Piece 1 reaches past the end of the crossing line by a 0.3 stub shared with piece 0: still a branch.
+        let mut fused = l_corner();
+        fused.edges.push(edge(vec![0, 1], DVec3::new(1.0, 40.0, 1.0), DVec3::new(1.0, 40.3, 1.0)));
+        fused.faces[0].edges.push(5);
+        fused.faces[1].edges.push(5);
+        let pieces: Vec<usize> = find_branches(&fused, &[2.0, 2.0]).iter().map(|b| b.piece).collect();
+        assert_eq!(pieces, vec![1, 3]);
     }
 
     #[test]

@@ -25,6 +25,15 @@ pub enum Placement {
     Plane { origin: [f64; 3], normal: [f64; 3] },
 }
 
+/// Partner faces per requested face (same order), the fuzzy tolerance of the cut, and the width up to which
+/// uncovered pieces stay.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Clip {
+    pub partners: Vec<Vec<usize>>,
+    pub fuzzy: f64,
+    pub narrow: f64,
+}
+
 /// A free edge of a fused shape, seen from its face.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct EdgeRef {
@@ -61,7 +70,15 @@ pub enum Request {
     Ping {},
     LoadStep { path: String },
     Describe { handle: u64, mesh: bool, mesh_tolerance: f64 },
-    MakePatch { handle: u64, faces: Vec<usize>, #[serde(flatten)] placement: Placement },
+    /// `clip`: each face cut to the footprint of its partners (planar faces only).
+    MakePatch {
+        handle: u64,
+        faces: Vec<usize>,
+        #[serde(flatten)]
+        placement: Placement,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        clip: Option<Clip>,
+    },
     /// `split_internal`: split faces along joints that end inside them (for the final result only).
     Fuse { patches: Vec<u64>, fuzzy: f64, #[serde(skip_serializing_if = "std::ops::Not::not")] split_internal: bool },
     MakeShells { handle: u64, shells: Vec<Vec<usize>> },
@@ -296,7 +313,7 @@ mod tests {
                 r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"preview":"o.glb"}}"#,
             ),
             (
-                Request::MakePatch { handle: 2, faces: vec![4, 5], placement: Placement::Offset(-1.0) },
+                Request::MakePatch { handle: 2, faces: vec![4, 5], placement: Placement::Offset(-1.0), clip: None },
                 r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[4,5],"offset":-1.0}}"#,
             ),
             (
@@ -304,8 +321,9 @@ mod tests {
                     handle: 2,
                     faces: vec![7],
                     placement: Placement::Plane { origin: [50.0, 0.0, 0.0], normal: [1.0, 0.0, 0.0] },
+                    clip: Some(Clip { partners: vec![vec![8, 9]], fuzzy: 0.001, narrow: 3.0 }),
                 },
-                r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[7],"plane":{"origin":[50.0,0.0,0.0],"normal":[1.0,0.0,0.0]}}}"#,
+                r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[7],"plane":{"origin":[50.0,0.0,0.0],"normal":[1.0,0.0,0.0]},"clip":{"partners":[[8,9]],"fuzzy":0.001,"narrow":3.0}}}"#,
             ),
             (
                 Request::Fuse { patches: vec![3, 4], fuzzy: 0.001, split_internal: false },
