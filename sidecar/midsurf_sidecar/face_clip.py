@@ -8,7 +8,6 @@ neighbouring patches.
 """
 
 from OCP.BRepAdaptor import BRepAdaptor_Surface
-from OCP.BRepAlgoAPI import BRepAlgoAPI_Splitter
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_Transform
 from OCP.BRepClass3d import BRepClass3d_SolidClassifier
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
@@ -18,12 +17,12 @@ from OCP.GeomAbs import GeomAbs_Plane
 from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_FACE, TopAbs_IN
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
-from OCP.collections import List_TopoDS_Shape
 from OCP.gp import gp_Pnt, gp_Trsf, gp_Vec
 
 from .face_measure import diagonal
 from .face_normals import OutwardNormals
 from .face_point import interior_point
+from .patch_fuse import split
 from .patch_unify import unify
 from .topology import indexed_map, surface_props
 
@@ -47,16 +46,8 @@ def clip_to_partners(
     reach = diagonal(face) + max(diagonal(p) for p in partners)
     prisms = [_prism(p, normal, reach) for p in partners]
 
-    splitter = BRepAlgoAPI_Splitter()
-    arguments, tools = List_TopoDS_Shape(), List_TopoDS_Shape()
-    arguments.Append(face)
-    for prism in prisms:
-        tools.Append(prism)
-    splitter.SetArguments(arguments)
-    splitter.SetTools(tools)
-    splitter.SetFuzzyValue(fuzzy)
-    splitter.Build()
-    if not splitter.IsDone():
+    splitter = split(face, prisms, fuzzy)
+    if splitter is None:
         return [face]
     pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
     kept = []

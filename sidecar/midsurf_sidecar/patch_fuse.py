@@ -25,6 +25,21 @@ from .vectors import xyz
 EDGE_POINTS = 5
 
 
+def split(shape: TopoDS_Shape, tools: list[TopoDS_Shape], fuzzy: float) -> BRepAlgoAPI_Splitter | None:
+    """`shape` split by `tools` (non-destructive, fuzzy); None when OCCT gives up."""
+    splitter = BRepAlgoAPI_Splitter()
+    arguments, tool_list = List_TopoDS_Shape(), List_TopoDS_Shape()
+    arguments.Append(shape)
+    for tool in tools:
+        tool_list.Append(tool)
+    splitter.SetArguments(arguments)
+    splitter.SetTools(tool_list)
+    splitter.SetFuzzyValue(fuzzy)
+    splitter.SetNonDestructive(True)
+    splitter.Build()
+    return splitter if splitter.IsDone() else None
+
+
 def fuse(patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool = False) -> tuple[TopoDS_Shape, dict[str, Any]]:
     """(F, the reply's `faces` and `edges`).
 
@@ -102,17 +117,8 @@ def _split_at_internal_edges(fused: TopoDS_Shape, patch_of: list[int], fuzzy: fl
                 tools.extend(pieces.FindKey(k + 1) for k in range(pieces.Size()))
     if not tools:
         return fused, patch_of
-    splitter = BRepAlgoAPI_Splitter()
-    arguments, tool_list = List_TopoDS_Shape(), List_TopoDS_Shape()
-    arguments.Append(fused)
-    for tool in tools:
-        tool_list.Append(tool)
-    splitter.SetArguments(arguments)
-    splitter.SetTools(tool_list)
-    splitter.SetFuzzyValue(fuzzy)
-    splitter.SetNonDestructive(True)
-    splitter.Build()
-    if not splitter.IsDone():
+    splitter = split(fused, tools, fuzzy)
+    if splitter is None:
         return fused, patch_of  # the joints stay internal edges: no worse than before
     result = splitter.Shape()
     result_map = indexed_map(result, TopAbs_FACE)
