@@ -91,7 +91,10 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
             continue;
         }
         if crossing.is_empty() {
-            loose[i] = hanging;
+            // Only an overshoot-sized piece (mean width 2 x area / perimeter within the branch limit of its own
+            // thickness) is loose: a large piece split off by its patch's own edges is part of the wall.
+            let perimeter: f64 = face.edges.iter().map(|&e| fused.edges[e].length).sum();
+            loose[i] = hanging && 2.0 * face.area <= BRANCH_WIDTH * thickness[face.patch] * perimeter;
             continue;
         }
         let width = face
@@ -243,6 +246,7 @@ mod tests {
         // Piece 4 of patch 0 touches no other patch: an overshoot corner hanging off branch 1 only.
         let mut fused = l_corner();
         fused.faces.push(face(0, 1.0, vec![5, 6]));
+        // (perimeter of its two listed edges 2, mean width 2 x 1 / 2 = 1 <= 0.75 x 2: overshoot-sized)
         fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
         fused.edges.push(edge(vec![4], DVec3::new(0.0, 41.0, 1.0), DVec3::new(1.0, 41.0, 1.0)));
         fused.faces[1].edges.push(5);
@@ -254,6 +258,18 @@ mod tests {
         fused.faces[0].edges.push(5);
         let pieces: Vec<usize> = find_branches(&fused, &[2.0, 2.0]).iter().map(|b| b.piece).collect();
         assert_eq!(pieces, vec![1, 3]);
+    }
+
+    #[test]
+    fn a_large_piece_touching_no_other_patch_is_not_loose() {
+        let mut fused = l_corner();
+        fused.faces.push(face(0, 400.0, vec![5, 6]));
+        fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
+        fused.edges.push(edge(vec![4], DVec3::new(0.0, 60.0, 1.0), DVec3::new(20.0, 60.0, 1.0)));
+        fused.faces[1].edges.push(5);
+        // It is part of the wall: it stays, and anchors the strip joined to it.
+        let pieces: Vec<usize> = find_branches(&fused, &[2.0, 2.0]).iter().map(|b| b.piece).collect();
+        assert_eq!(pieces, vec![3]);
     }
 
     #[test]
