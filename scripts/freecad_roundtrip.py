@@ -1,6 +1,6 @@
 """FreeCAD round trip: does FreeCAD read midsurf's output as midsurf says it wrote it?
 
-Run by FreeCAD's console (Debian package freecad, `freecadcmd`), which runs a script but passes it no
+Run by FreeCAD's console (`freecadcmd`, Debian package freecad-python3), which runs a script but passes it no
 arguments, so the work list comes in the environment:
 
   MIDSURF_ROUNDTRIP="OUT1.step:REPORT1.json OUT2.step:REPORT2.json" freecadcmd scripts/freecad_roundtrip.py

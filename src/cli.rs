@@ -40,18 +40,19 @@ pub enum Command {
         #[arg(long, requires = "json")]
         mesh: bool,
     },
+    /// Make the mid-surface of a part: pair faces, make a mid-patch per pair group (offset of the larger side
+    /// by half the thickness, or projection onto the bisector of a draft pair), trim the branches where patches
+    /// cross, grow and stitch the joints, and write the patches as shells whose faces are named
+    /// "patch <id> t=<thickness>".
+    ///
+    /// Exit code 1 when the report has warnings (unpaired faces, failed patches or joints, no pairs at all).
+    Run(RunCli),
     /// Find the face pairs of a part: groups of opposite faces (the two skins of each wall) and the role of
     /// every face, ending with the paired share of the area.
     ///
     /// Parallel pairs have opposite normals; draft pairs normals within twice --draft-max of opposite; curved
     /// pairs share their axis or centre (cylinders, cones, spheres, tori) or keep a nearly constant distance
     /// (freeform). Every pair is closer than --t-max and its faces overlap when projected onto each other.
-    /// Make the mid-surface of a part: pair faces, make a mid-patch per pair group (offset of the larger side
-    /// by half the thickness, or projection onto the bisector of a draft pair), trim the branches where patches
-    /// cross, and write the patches as shells whose faces are named "patch <id> t=<thickness>".
-    ///
-    /// Exit code 1 when the report has warnings (unpaired faces, failed patches, no pairs at all).
-    Run(RunCli),
     Pairs {
         /// The STEP file to read.
         part: PathBuf,

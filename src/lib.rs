@@ -21,3 +21,4 @@ pub mod pairs_report;
 pub mod synthetic;
 pub mod tolerance;
 pub mod topology;
+pub mod union_find;

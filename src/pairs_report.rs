@@ -120,29 +120,16 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
         )
         .unwrap();
     }
-    let mut counts = [0usize; 5];
-    for role in &p.roles {
-        counts[match role {
-            FaceRole::Pair { .. } => 0,
-            FaceRole::Thickness { .. } => 1,
-            FaceRole::Connecting { .. } => 2,
-            FaceRole::Suppressed => 3,
-            FaceRole::Unpaired { .. } => 4,
-        }] += 1;
-    }
+    let counts = crate::report::RoleCounts::of(&p.roles);
     writeln!(
         out,
         "  roles: pair {}, thickness {}, connecting {}, suppressed {}, unpaired {}",
-        counts[0], counts[1], counts[2], counts[3], counts[4]
+        counts.pair, counts.thickness, counts.connecting, counts.suppressed, counts.unpaired
     )
     .unwrap();
     for (f, role) in p.roles.iter().enumerate() {
-        let FaceRole::Unpaired { near_miss } = role else { continue };
+        let Some(why) = role.unpaired_reason() else { continue };
         let face = &graph.faces[f];
-        let why = match near_miss {
-            Some(m) => format!("best candidate face {}: {}", m.candidate, m.rejection.describe()),
-            None => "no face within t_max".to_string(),
-        };
         writeln!(out, "  unpaired face {f} ({}, {:.2} mm2): {why}", face.surface.kind_name(), face.area).unwrap();
     }
     writeln!(

@@ -4,7 +4,8 @@ use serde::Serialize;
 
 use crate::face_graph::FaceId;
 use crate::pairing::estimate::TMaxEstimate;
-use crate::pairing::{PairGroup, PairKind, Thickness};
+use crate::pairing::{FaceRole, PairGroup, PairKind, Thickness};
+use crate::topology::round;
 use crate::patch::trim::Branch;
 use crate::stitch::{FreeEdges, JointReport};
 use crate::tolerance::Tolerances;
@@ -67,6 +68,22 @@ pub struct RoleCounts {
     pub connecting: usize,
     pub suppressed: usize,
     pub unpaired: usize,
+}
+
+impl RoleCounts {
+    pub fn of(roles: &[FaceRole]) -> RoleCounts {
+        let mut counts = RoleCounts::default();
+        for role in roles {
+            *match role {
+                FaceRole::Pair { .. } => &mut counts.pair,
+                FaceRole::Thickness { .. } => &mut counts.thickness,
+                FaceRole::Connecting { .. } => &mut counts.connecting,
+                FaceRole::Suppressed => &mut counts.suppressed,
+                FaceRole::Unpaired { .. } => &mut counts.unpaired,
+            } += 1;
+        }
+        counts
+    }
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -178,11 +195,6 @@ pub fn legend(thicknesses: &[f64]) -> Vec<LegendEntry> {
 pub fn band_color(legend: &[LegendEntry], t: f64) -> [f64; 3] {
     let t = round(t, 3);
     legend.iter().find(|e| e.thickness == t).map(|e| e.color).unwrap_or([0.5, 0.5, 0.5])
-}
-
-pub fn round(x: f64, digits: i32) -> f64 {
-    let k = 10f64.powi(digits);
-    (x * k).round() / k
 }
 
 /// The patches as CSV, one row per patch in id order: `patch,solid,kind,thickness,area,faces,source_faces`

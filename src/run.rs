@@ -6,13 +6,13 @@ use std::time::Instant;
 use crate::error::Error;
 use crate::exit::Exit;
 use crate::face_graph::FaceGraph;
-use crate::pairing::FaceRole;
 use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote};
 use crate::patch::trim::{connected_sets, find_branches, keep_mask};
 use crate::report::{self, *};
 use crate::geom::inside::SolidMesh;
+use crate::output::Pending;
 use crate::stitch::{stitch, JointReport, PatchInfo};
 use crate::sidecar::protocol::{Clip, FaceAttributes, Fused, MadePatch, Request, Shells, Written};
 
@@ -37,11 +37,10 @@ struct Made {
 pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let started = Instant::now();
     let mut timings = Timings::default();
-    let step_out = crate::output::Pending::new(&args.output, &args.input)?;
-    let report_out = args.report.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
-    let summary_out = args.summary.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
-    let csv_out = args.csv.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
-    let preview_out = args.preview.as_deref().map(|r| crate::output::Pending::new(r, &args.input)).transpose()?;
+    let step_out = Pending::new(&args.output, &args.input)?;
+    let optional = |path: &Option<PathBuf>| path.as_deref().map(|p| Pending::new(p, &args.input)).transpose();
+    let (report_out, summary_out) = (optional(&args.report)?, optional(&args.summary)?);
+    let (csv_out, preview_out) = (optional(&args.csv)?, optional(&args.preview)?);
     let mut sidecar = part::start_sidecar(&args.input)?;
     let kernel = |e| Error::Sidecar { path: args.input.clone(), error: e };
 
@@ -153,7 +152,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
             FaceAttributes { face: j, name: format!("patch {} t={t:.3}", k + 1), color: report::band_color(&legend, t), thickness: t }
         })
         .collect();
-    let utf8 = |p: &crate::output::Pending| {
+    let utf8 = |p: &Pending| {
         p.temp.to_str().map(str::to_string).ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
     };
     let preview = preview_out.as_ref().map(utf8).transpose()?;
@@ -284,10 +283,10 @@ fn patch_reports(made: &[Made], fused: &Fused, keep: &[bool]) -> Vec<PatchReport
 fn pairing_warnings(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> Vec<Warning> {
     let mut out = Vec::new();
     for (f, role) in sp.pairing.roles.iter().enumerate() {
-        if let FaceRole::Unpaired { .. } = role {
+        if let Some(why) = role.unpaired_reason() {
             out.push(Warning {
                 code: "unpaired_face",
-                message: format!("face {f} ({}, {:.3} mm2) has no partner: {}", graph.faces[f].surface.kind_name(), graph.faces[f].area, unpaired_reason(role)),
+                message: format!("face {f} ({}, {:.3} mm2) has no partner: {why}", graph.faces[f].surface.kind_name(), graph.faces[f].area),
                 solid: Some(solid),
                 faces: vec![f],
             });
@@ -306,29 +305,18 @@ fn pairing_warnings(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> Vec<W
     out
 }
 
-fn unpaired_reason(role: &FaceRole) -> String {
-    match role {
-        FaceRole::Unpaired { near_miss: Some(m) } => format!("best candidate face {}: {}", m.candidate, m.rejection.describe()),
-        _ => "no face within t_max".to_string(),
-    }
-}
-
 fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidReport {
-    let mut roles = RoleCounts::default();
-    let mut unpaired = Vec::new();
-    for (f, role) in sp.pairing.roles.iter().enumerate() {
-        match role {
-            FaceRole::Pair { .. } => roles.pair += 1,
-            FaceRole::Thickness { .. } => roles.thickness += 1,
-            FaceRole::Connecting { .. } => roles.connecting += 1,
-            FaceRole::Suppressed => roles.suppressed += 1,
-            FaceRole::Unpaired { .. } => {
-                roles.unpaired += 1;
-                let face = &graph.faces[f];
-                unpaired.push(Unpaired { face: f, surface: face.surface.kind_name(), area: face.area, reason: unpaired_reason(role) });
-            }
-        }
-    }
+    let unpaired = sp
+        .pairing
+        .roles
+        .iter()
+        .enumerate()
+        .filter_map(|(f, role)| {
+            let face = &graph.faces[f];
+            role.unpaired_reason().map(|reason| Unpaired { face: f, surface: face.surface.kind_name(), area: face.area, reason })
+        })
+        .collect();
+    let roles = RoleCounts::of(&sp.pairing.roles);
     SolidReport {
         solid,
         faces: graph.faces.len(),

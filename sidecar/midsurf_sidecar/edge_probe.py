@@ -25,6 +25,7 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
 from .errors import BadArgs, KernelError
+from .topology import diagonal
 from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 
 
@@ -86,9 +87,7 @@ def _runs_backwards(face: TopoDS_Face, samples: list[EdgeSample]) -> bool:
     one a little outward on it (the rule got the side wrong)."""
     middle = samples[len(samples) // 2]
     tolerance = BRep_Tool.Tolerance_s(face)
-    box = Bnd_Box()
-    BRepBndLib.Add_s(face, box, False)
-    step = max(1e-4 * norm(sub(xyz(box.CornerMax()), xyz(box.CornerMin()))), 20.0 * tolerance)
+    step = max(1e-4 * diagonal(face), 20.0 * tolerance)
     inner = add_scaled(middle.point, middle.outward, -step)
     outer = add_scaled(middle.point, middle.outward, step)
     state_in = BRepClass_FaceClassifier(face, gp_Pnt(*inner), tolerance).State()

@@ -23,9 +23,9 @@ from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
 from .edge_probe import sample_edge
 from .errors import KernelError
-from .face_measure import diagonal
 from .face_normals import OutwardNormals
 from .face_point import interior_point
+from .topology import diagonal
 from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 
 # Outward directions (unit vectors) and lengths equal to this (relative) share are one sweep.

@@ -19,12 +19,11 @@ from OCP.TopAbs import TopAbs_FACE, TopAbs_IN
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Pnt, gp_Trsf, gp_Vec
 
-from .face_measure import diagonal
 from .face_normals import OutwardNormals
 from .face_point import interior_point
 from .patch_fuse import split
 from .patch_unify import unify
-from .topology import indexed_map, surface_props
+from .topology import diagonal, indexed_map, surface_props
 
 # The clip is kept only when it removes more than this share of the face: below it the face already lies
 # over its partners, and splitting its edges would only add work for the joints.
@@ -49,12 +48,14 @@ def clip_to_partners(
     splitter = split(face, prisms, fuzzy)
     if splitter is None:
         return [face]
+    # One classifier per prism, loaded once, asked once per piece.
+    classifiers = [BRepClass3d_SolidClassifier(prism) for prism in prisms]
     pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
     kept = []
     for i in range(1, pieces.Size() + 1):
         piece = TopoDS.Face(pieces.FindKey(i))
         point, _ = interior_point(OutwardNormals(piece), diagonal(piece))
-        if any(_inside(prism, point, fuzzy) for prism in prisms) or _width(piece) <= narrow:
+        if any(_inside(c, point, fuzzy) for c in classifiers) or _width(piece) <= narrow:
             kept.append(piece)
     area = surface_props(face).Mass()
     kept_area = sum(surface_props(p).Mass() for p in kept)
@@ -92,6 +93,6 @@ def _prism(partner: TopoDS_Face, normal: gp_Vec, reach: float) -> TopoDS_Shape:
     return BRepPrimAPI_MakePrism(start, normal.Multiplied(2.0 * reach)).Shape()
 
 
-def _inside(prism: TopoDS_Shape, point, tolerance: float) -> bool:
-    classifier = BRepClass3d_SolidClassifier(prism, gp_Pnt(*point), max(tolerance, 1e-7))
+def _inside(classifier: BRepClass3d_SolidClassifier, point, tolerance: float) -> bool:
+    classifier.Perform(gp_Pnt(*point), max(tolerance, 1e-7))
     return classifier.State() == TopAbs_IN

@@ -2,9 +2,7 @@
 
 from typing import Any
 
-from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Tool
-from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepLib import BRepLib_ToolTriangulatedShape
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
@@ -12,7 +10,7 @@ from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
 
 from .errors import BadArgs, KernelError
-from .vectors import norm, sub, xyz
+from .topology import diagonal
 
 ANGULAR_DEFLECTION = 0.5
 # Finest tolerance accepted, relative to the part's size. Beyond it the mesh of a large curved face
@@ -27,9 +25,7 @@ def mesh_shape(shape: TopoDS_Shape, tolerance: float) -> None:
     Old triangulations are dropped first: BRepMesh keeps an existing finer mesh, which would make the
     answer depend on earlier requests.
     """
-    box = Bnd_Box()
-    BRepBndLib.Add_s(shape, box, False)
-    size = norm(sub(xyz(box.CornerMax()), xyz(box.CornerMin())))
+    size = diagonal(shape)
     if tolerance < size * MIN_RELATIVE_TOLERANCE:
         raise BadArgs(
             f"mesh_tolerance {tolerance} mm is too fine for a part {size:.6g} mm across: "

@@ -14,11 +14,10 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
 from .errors import OpError, one_line
-from .face_measure import diagonal
 from .face_normals import OutwardNormals
 from .face_point import interior_point
 from .surface_kind import describe_surface
-from .topology import indexed_map
+from .topology import diagonal, indexed_map
 
 CURVED_KINDS = (GeomAbs_Cylinder, GeomAbs_Cone, GeomAbs_Sphere, GeomAbs_Torus)
 # An offset radius at or below this fraction of the original radius counts as collapsed.

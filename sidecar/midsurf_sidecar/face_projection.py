@@ -21,10 +21,9 @@ from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
 from .errors import OpError
-from .face_measure import diagonal
 from .face_normals import OutwardNormals
 from .face_point import interior_point
-from .topology import face_wires, indexed_map
+from .topology import diagonal, face_wires, indexed_map
 from .vectors import Vec, add_scaled, dot, norm, scale, sub, xyz
 
 # |cos| between the source face's normal and the plane normal below which the face is edge-on to the

@@ -17,8 +17,8 @@ from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Shape
 
 from .errors import KernelError, one_line
-from .face_measure import diagonal, measure
-from .topology import IndexedShapeMap, indexed_map
+from .face_measure import measure
+from .topology import diagonal, IndexedShapeMap, indexed_map
 from .vectors import xyz
 
 # Points reported along each edge, evenly spaced by parameter, both ends included.

@@ -1,5 +1,7 @@
 """Indexed sub-shape maps and mass properties: the id and measurement conventions shared by all ops."""
 
+from OCP.Bnd import Bnd_Box
+from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
 from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedShapeMap
@@ -41,3 +43,10 @@ def face_wires(face: TopoDS_Face) -> list[TopoDS_Wire]:
             wires.append(TopoDS.Wire(child))
         it.Next()
     return wires
+
+
+def diagonal(shape: TopoDS_Shape) -> float:
+    """Bounding-box diagonal (of the geometry, not of a triangulation): sizes steps and meshes."""
+    box = Bnd_Box()
+    BRepBndLib.Add_s(shape, box, False)
+    return box.CornerMin().Distance(box.CornerMax())

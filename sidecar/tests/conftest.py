@@ -1,6 +1,7 @@
 """Fixtures: in-process sidecar sessions (the Client below) and the real part ender3_e_plate."""
 
 import json
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -14,8 +15,17 @@ from midsurf_sidecar.server import PROTOCOL_VERSION, Session  # noqa: E402
 
 from shapes import write_step  # noqa: E402
 
+def _shared() -> Path:
+    """The read-only ../shared beside the repository (MIDSURF_SHARED overrides); a clone elsewhere (say /tmp)
+    falls back to the workplace's /work/shared."""
+    if "MIDSURF_SHARED" in os.environ:
+        return Path(os.environ["MIDSURF_SHARED"])
+    beside = Path(__file__).resolve().parents[3] / "shared"
+    return beside if beside.is_dir() else Path("/work/shared")
+
+
 # MANIFEST.tsv: 56 faces, 9859.45 mm3, 64 x 64 x 27.4 mm.
-E_PLATE = Path("/work/shared/parts/ender3_e_plate.step")
+E_PLATE = _shared() / "parts" / "ender3_e_plate.step"
 
 
 class Client:

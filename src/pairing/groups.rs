@@ -4,6 +4,7 @@
 use serde::Serialize;
 
 use super::{NearMiss, Pair, PairKind, Thickness};
+use crate::union_find::find;
 use crate::face_graph::{FaceGraph, FaceId};
 
 /// The two skins of a wall; `A` holds the group's lowest face id.
@@ -56,12 +57,17 @@ pub enum FaceRole {
     Unpaired { near_miss: Option<NearMiss> },
 }
 
-fn find(parent: &mut [usize], mut x: usize) -> usize {
-    while parent[x] != x {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
+impl FaceRole {
+    /// Why an unpaired face found no partner (None for the other roles).
+    pub fn unpaired_reason(&self) -> Option<String> {
+        match self {
+            FaceRole::Unpaired { near_miss: Some(m) } => {
+                Some(format!("best candidate face {}: {}", m.candidate, m.rejection.describe()))
+            }
+            FaceRole::Unpaired { near_miss: None } => Some("no face within t_max".to_string()),
+            _ => None,
+        }
     }
-    x
 }
 
 pub fn group_and_classify(

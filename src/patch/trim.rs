@@ -13,6 +13,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 use crate::sidecar::protocol::Fused;
+use crate::union_find::find;
 
 /// Overshoot allowance over the crossing patch's thickness (nominal overshoot 0.5).
 const BRANCH_WIDTH: f64 = 0.75;
@@ -85,7 +86,7 @@ pub fn find_branches(fused: &Fused, thickness: &[f64]) -> Vec<Branch> {
                 own_links[i].extend(edge.faces.iter().copied().filter(|&g| g != i));
             }
         }
-        if largest[face.patch].map(|(_, j)| j) == Some(i) || !(hanging || !own_links[i].is_empty()) {
+        if largest[face.patch].map(|(_, j)| j) == Some(i) || (!hanging && own_links[i].is_empty()) {
             // The main piece, or one closed in by crossing lines all round (a floor between walls): however
             // narrow, a branch hangs past the crossing, by a free edge or with other overshoot pieces.
             continue;
@@ -141,13 +142,6 @@ pub fn keep_mask(pieces: usize, branches: &[Branch]) -> Vec<bool> {
 pub fn connected_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
     let n = fused.faces.len();
     let mut parent: Vec<usize> = (0..n).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
     for edge in &fused.edges {
         let kept: Vec<usize> = edge.faces.iter().copied().filter(|&f| keep[f]).collect();
         for w in kept.windows(2) {
