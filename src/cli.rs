@@ -12,6 +12,7 @@ use crate::face_graph::FaceGraph;
 use crate::inspect::{self, SolidSummary};
 use crate::pairs_report::{self, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
+use crate::patch::plan::Position;
 
 /// Mid-surface generator for thin-walled CAD parts: a STEP solid in, a mid-surface STEP with a thickness per
 /// patch out.
@@ -86,6 +87,10 @@ pub struct RunCli {
     /// the STEP (legend in the report), for any glTF viewer.
     #[arg(long)]
     pub preview: Option<PathBuf>,
+    /// Where the patches lie through their walls: mid-way, or on the top or bottom skin with the thickness
+    /// kept (top: the skin of each pair's reference face, the face normal pointing away from the material).
+    #[arg(long, value_enum, default_value_t = Position::Mid)]
+    pub position: Position,
     /// Leave the time per stage out of the report, so that two runs give byte-identical reports.
     #[arg(long)]
     pub no_timings: bool,
@@ -106,7 +111,10 @@ pub struct PairingArgs {
 
 impl PairingArgs {
     pub fn params(&self) -> PairingParams {
-        PairingParams { t_max: self.t_max, draft_max_deg: self.draft_max }
+        PairingParams {
+            t_max: self.t_max,
+            draft_max_deg: self.draft_max,
+        }
     }
 }
 
@@ -127,7 +135,11 @@ fn draft_degrees(s: &str) -> Result<f64, String> {
 pub fn run(cli: Cli) -> Result<Exit, Error> {
     match cli.command {
         Command::Inspect { part, json, mesh } => inspect_command(part, json, mesh),
-        Command::Pairs { part, json, pairing } => pairs_command(part, json, pairing.params()),
+        Command::Pairs {
+            part,
+            json,
+            pairing,
+        } => pairs_command(part, json, pairing.params()),
         Command::Run(r) => crate::run::run(&crate::run::RunArgs {
             input: r.part,
             output: r.output,
@@ -136,6 +148,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             csv: r.csv,
             preview: r.preview,
             params: r.pairing.params(),
+            position: r.position,
             timings: !r.no_timings,
         }),
     }
@@ -155,18 +168,34 @@ struct SolidJson<'a> {
 
 fn inspect_command(path: PathBuf, json: bool, mesh: bool) -> Result<Exit, Error> {
     let mut sidecar = part::start_sidecar(&path)?;
-    let part = part::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: None })?;
+    let part = part::load(
+        &mut sidecar,
+        &path,
+        MeshRequest {
+            mesh,
+            tolerance: None,
+        },
+    )?;
     sidecar.shutdown();
     let file = path.display().to_string();
     let text = if json {
         let solids = part
             .solids
             .iter()
-            .map(|s| SolidJson { summary: inspect::summarize(&s.graph), graph: &s.graph })
+            .map(|s| SolidJson {
+                summary: inspect::summarize(&s.graph),
+                graph: &s.graph,
+            })
             .collect();
-        serde_json::to_string_pretty(&InspectJson { file, solids }).expect("face graphs always serialise") + "\n"
+        serde_json::to_string_pretty(&InspectJson { file, solids })
+            .expect("face graphs always serialise")
+            + "\n"
     } else {
-        let summaries: Vec<SolidSummary> = part.solids.iter().map(|s| inspect::summarize(&s.graph)).collect();
+        let summaries: Vec<SolidSummary> = part
+            .solids
+            .iter()
+            .map(|s| inspect::summarize(&s.graph))
+            .collect();
         inspect::render(&file, &summaries)
     };
     print(&text)?;
@@ -187,12 +216,24 @@ struct PairsJson<'a> {
 
 fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exit, Error> {
     let mut sidecar = part::start_sidecar(&path)?;
-    let part = part::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
+    let part = part::load(
+        &mut sidecar,
+        &path,
+        MeshRequest {
+            mesh: true,
+            tolerance: None,
+        },
+    )?;
     sidecar.shutdown();
     let solids: Vec<SolidPairing> = pairs_report::pair_part(&part, params);
     let file = path.display().to_string();
     let text = if json {
-        serde_json::to_string_pretty(&PairsJson { file, solids: &solids }).expect("pairings always serialise") + "\n"
+        serde_json::to_string_pretty(&PairsJson {
+            file,
+            solids: &solids,
+        })
+        .expect("pairings always serialise")
+            + "\n"
     } else {
         let mut out = format!("{file}: {} solid(s)\n", solids.len());
         for (i, (solid, sp)) in part.solids.iter().zip(&solids).enumerate() {

@@ -17,11 +17,17 @@ pub enum Error {
 
 impl Error {
     pub fn input(path: &Path, problem: impl Into<String>) -> Error {
-        Error::Input { path: path.to_path_buf(), problem: problem.into() }
+        Error::Input {
+            path: path.to_path_buf(),
+            problem: problem.into(),
+        }
     }
 
     pub fn output(path: &Path, problem: impl Into<String>) -> Error {
-        Error::Output { path: path.to_path_buf(), problem: problem.into() }
+        Error::Output {
+            path: path.to_path_buf(),
+            problem: problem.into(),
+        }
     }
 }
 
@@ -30,10 +36,19 @@ impl fmt::Display for Error {
         // Messages may quote multi-line text (tracebacks): keep the promise of one line.
         let one_line = |s: &str| s.split_whitespace().collect::<Vec<_>>().join(" ");
         match self {
-            Error::Input { path, problem } => write!(f, "{}: {}", path.display(), one_line(problem)),
-            Error::Sidecar { path, error } => write!(f, "{}: {}", path.display(), one_line(&error.to_string())),
+            Error::Input { path, problem } => {
+                write!(f, "{}: {}", path.display(), one_line(problem))
+            }
+            Error::Sidecar { path, error } => {
+                write!(f, "{}: {}", path.display(), one_line(&error.to_string()))
+            }
             Error::Output { path, problem } => {
-                write!(f, "{}: cannot write output: {}", path.display(), one_line(problem))
+                write!(
+                    f,
+                    "{}: cannot write output: {}",
+                    path.display(),
+                    one_line(problem)
+                )
             }
         }
     }

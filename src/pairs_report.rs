@@ -40,7 +40,12 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -
     let tolerances = Tolerances::new(graph.bbox.diagonal(), t_max, draft_max);
     let pairing = pairing::detect(graph, &tolerances, pairable);
     let area_with = |keep: &dyn Fn(&FaceRole) -> bool| -> f64 {
-        graph.faces.iter().filter(|f| keep(&pairing.roles[f.id])).map(|f| f.area).sum()
+        graph
+            .faces
+            .iter()
+            .filter(|f| keep(&pairing.roles[f.id]))
+            .map(|f| f.area)
+            .sum()
     };
     let paired = area_with(&|r| matches!(r, FaceRole::Pair { .. }));
     let skins: f64 = graph
@@ -57,7 +62,11 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -
         t_max_source,
         estimate,
         tolerances,
-        paired_share: if graph.area > 0.0 { paired / graph.area } else { 0.0 },
+        paired_share: if graph.area > 0.0 {
+            paired / graph.area
+        } else {
+            0.0
+        },
         paired_skin_share: if skins > 0.0 { paired / skins } else { 0.0 },
         pairing,
     }
@@ -65,7 +74,10 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -
 
 /// Pairs every solid of a part, all faces pairable (no suppression yet).
 pub fn pair_part(part: &crate::part::Part, params: PairingParams) -> Vec<SolidPairing> {
-    part.solids.iter().map(|s| pair_solid(&s.graph, params, &vec![true; s.graph.faces.len()])).collect()
+    part.solids
+        .iter()
+        .map(|s| pair_solid(&s.graph, params, &vec![true; s.graph.faces.len()]))
+        .collect()
 }
 
 /// A fillet or round: a cylinder, torus or sphere whose (minor) radius is within the wall thickness.
@@ -99,8 +111,12 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
         sp.tolerances.draft_max.to_degrees()
     )
     .unwrap();
-    writeln!(out, "  {:>5}  {:<11}  {:>9}  {:>19}  {:>12}  side A / side B (* = reference)", "group", "kind", "t mean", "t range", "overlap mm2")
-        .unwrap();
+    writeln!(
+        out,
+        "  {:>5}  {:<11}  {:>9}  {:>19}  {:>12}  side A / side B (* = reference)",
+        "group", "kind", "t mean", "t range", "overlap mm2"
+    )
+    .unwrap();
     for g in &p.groups {
         let star = |side: pairing::Side| if g.reference == side { "*" } else { "" };
         writeln!(
@@ -116,7 +132,11 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
             faces_list(&g.sides[0]),
             star(pairing::Side::B),
             faces_list(&g.sides[1]),
-            if g.side_conflicts.is_empty() { String::new() } else { format!("  side conflicts {:?}", g.side_conflicts) }
+            if g.side_conflicts.is_empty() {
+                String::new()
+            } else {
+                format!("  side conflicts {:?}", g.side_conflicts)
+            }
         )
         .unwrap();
     }
@@ -128,9 +148,17 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
     )
     .unwrap();
     for (f, role) in p.roles.iter().enumerate() {
-        let Some(why) = role.unpaired_reason() else { continue };
+        let Some(why) = role.unpaired_reason() else {
+            continue;
+        };
         let face = &graph.faces[f];
-        writeln!(out, "  unpaired face {f} ({}, {:.2} mm2): {why}", face.surface.kind_name(), face.area).unwrap();
+        writeln!(
+            out,
+            "  unpaired face {f} ({}, {:.2} mm2): {why}",
+            face.surface.kind_name(),
+            face.area
+        )
+        .unwrap();
     }
     writeln!(
         out,

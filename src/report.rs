@@ -5,10 +5,10 @@ use serde::Serialize;
 use crate::face_graph::FaceId;
 use crate::pairing::estimate::TMaxEstimate;
 use crate::pairing::{FaceRole, PairGroup, PairKind, Thickness};
-use crate::topology::round;
 use crate::patch::trim::Branch;
 use crate::stitch::{FreeEdges, JointReport};
 use crate::tolerance::Tolerances;
+use crate::topology::round;
 use crate::topology::Topology;
 
 /// Bumped when a field changes meaning or disappears.
@@ -41,6 +41,8 @@ pub struct Parameters {
     /// The user's --t-max, or null when estimated per solid (see solids[].t_max).
     pub t_max: Option<f64>,
     pub draft_max_deg: f64,
+    /// Where the patches lie through their walls: mid, top (the reference face's skin) or bottom.
+    pub position: crate::patch::plan::Position,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -188,13 +190,20 @@ pub fn legend(thicknesses: &[f64]) -> Vec<LegendEntry> {
     bands
         .into_iter()
         .enumerate()
-        .map(|(i, thickness)| LegendEntry { thickness, color: PALETTE.get(i).copied().unwrap_or([0.5, 0.5, 0.5]) })
+        .map(|(i, thickness)| LegendEntry {
+            thickness,
+            color: PALETTE.get(i).copied().unwrap_or([0.5, 0.5, 0.5]),
+        })
         .collect()
 }
 
 pub fn band_color(legend: &[LegendEntry], t: f64) -> [f64; 3] {
     let t = round(t, 3);
-    legend.iter().find(|e| e.thickness == t).map(|e| e.color).unwrap_or([0.5, 0.5, 0.5])
+    legend
+        .iter()
+        .find(|e| e.thickness == t)
+        .map(|e| e.color)
+        .unwrap_or([0.5, 0.5, 0.5])
 }
 
 /// The patches as CSV, one row per patch in id order: `patch,solid,kind,thickness,area,faces,source_faces`
@@ -229,11 +238,18 @@ mod tests {
             group: 0,
             kind,
             source_faces: sources,
-            thickness: Thickness { mean: t, min: t, max: t },
+            thickness: Thickness {
+                mean: t,
+                min: t,
+                max: t,
+            },
             area: 12.345,
             faces: 2,
         };
-        let csv = patches_csv(&[patch(1, PairKind::Parallel, 2.0, vec![3, 7]), patch(2, PairKind::Draft, 1.25, vec![0])]);
+        let csv = patches_csv(&[
+            patch(1, PairKind::Parallel, 2.0, vec![3, 7]),
+            patch(2, PairKind::Draft, 1.25, vec![0]),
+        ]);
         assert_eq!(
             csv,
             "patch,solid,kind,thickness,area,faces,source_faces\n1,1,parallel,2.000,12.35,2,3 7\n2,1,draft,1.250,12.35,2,0\n"

@@ -6,15 +6,15 @@ use std::time::Instant;
 use crate::error::Error;
 use crate::exit::Exit;
 use crate::face_graph::FaceGraph;
-use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
-use crate::part::{self, MeshRequest};
-use crate::patch::plan::{plan_patches, PatchPlan, PlanNote};
-use crate::patch::trim::{connected_sets, find_branches, keep_mask};
-use crate::report::{self, *};
 use crate::geom::inside::SolidMesh;
 use crate::output::Pending;
-use crate::stitch::{stitch, JointReport, PatchInfo};
+use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
+use crate::part::{self, MeshRequest};
+use crate::patch::plan::{plan_patches, PatchPlan, PlanNote, Position};
+use crate::patch::trim::{connected_sets, find_branches, keep_mask};
+use crate::report::{self, *};
 use crate::sidecar::protocol::{Clip, FaceAttributes, Fused, MadePatch, Request, Shells, Written};
+use crate::stitch::{branch_limits, stitch, JointReport, PatchInfo};
 
 pub struct RunArgs {
     pub input: PathBuf,
@@ -24,6 +24,7 @@ pub struct RunArgs {
     pub csv: Option<PathBuf>,
     pub preview: Option<PathBuf>,
     pub params: PairingParams,
+    pub position: Position,
     pub timings: bool,
 }
 
@@ -38,14 +39,28 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let started = Instant::now();
     let mut timings = Timings::default();
     let step_out = Pending::new(&args.output, &args.input)?;
-    let optional = |path: &Option<PathBuf>| path.as_deref().map(|p| Pending::new(p, &args.input)).transpose();
+    let optional = |path: &Option<PathBuf>| {
+        path.as_deref()
+            .map(|p| Pending::new(p, &args.input))
+            .transpose()
+    };
     let (report_out, summary_out) = (optional(&args.report)?, optional(&args.summary)?);
     let (csv_out, preview_out) = (optional(&args.csv)?, optional(&args.preview)?);
     let mut sidecar = part::start_sidecar(&args.input)?;
-    let kernel = |e| Error::Sidecar { path: args.input.clone(), error: e };
+    let kernel = |e| Error::Sidecar {
+        path: args.input.clone(),
+        error: e,
+    };
 
     let t = Instant::now();
-    let part = part::load(&mut sidecar, &args.input, MeshRequest { mesh: true, tolerance: None })?;
+    let part = part::load(
+        &mut sidecar,
+        &args.input,
+        MeshRequest {
+            mesh: true,
+            tolerance: None,
+        },
+    )?;
     timings.load = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -57,7 +72,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
         warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
-        let (plans, notes) = plan_patches(&solid.graph, &sp.pairing);
+        let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position);
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
             let request = Request::MakePatch {
@@ -69,9 +84,14 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
                     fuzzy: sp.tolerances.fuse,
                     narrow: sp.tolerances.clip_narrow,
                 }),
+                reverse: plan.reverse,
             };
             match sidecar.call::<MadePatch>(&request) {
-                Ok(patch) => made.push(Made { solid: i + 1, plan, handle: patch.handle }),
+                Ok(patch) => made.push(Made {
+                    solid: i + 1,
+                    plan,
+                    handle: patch.handle,
+                }),
                 Err(e) if e.code().is_some() => warnings.push(Warning {
                     code: "patch_failed",
                     message: format!("group {} faces {:?}: {e}", plan.group, plan.faces),
@@ -85,49 +105,72 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     timings.patches = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let fuzzy = pairings.iter().map(|p| p.tolerances.fuse).fold(f64::INFINITY, f64::min);
+    let fuzzy = pairings
+        .iter()
+        .map(|p| p.tolerances.fuse)
+        .fold(f64::INFINITY, f64::min);
     let fuzzy = if fuzzy.is_finite() { fuzzy } else { 0.0 };
     let fused: Fused = sidecar
-        .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy, split_internal: false })
+        .call(&Request::Fuse {
+            patches: made.iter().map(|m| m.handle).collect(),
+            fuzzy,
+            split_internal: false,
+        })
         .map_err(kernel)?;
     let thickness: Vec<f64> = made.iter().map(|m| m.plan.thickness.mean).collect();
-    let mut branches = find_branches(&fused, &thickness);
+    let infos: Vec<PatchInfo> = made
+        .iter()
+        .map(|m| {
+            let tolerances = &pairings[m.solid - 1].tolerances;
+            // On a skin the patch a joint grows to may lie up to half a thickness farther than its middle.
+            let skin = if args.position == Position::Mid {
+                0.0
+            } else {
+                0.5 * tolerances.t_max
+            };
+            PatchInfo {
+                thickness: m.plan.thickness.mean,
+                to_mid: m.plan.to_mid,
+                solid: m.solid - 1,
+                reach: tolerances.joint_reach + skin,
+            }
+        })
+        .collect();
+    let mut branches = find_branches(&fused, &branch_limits(&infos));
     let keep = keep_mask(fused.faces.len(), &branches);
     timings.trim = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let infos: Vec<PatchInfo> = made
-        .iter()
-        .map(|m| PatchInfo {
-            thickness: m.plan.thickness.mean,
-            solid: m.solid - 1,
-            reach: pairings[m.solid - 1].tolerances.joint_reach,
-        })
-        .collect();
     let meshes: Vec<SolidMesh> = part
         .solids
         .iter()
         .map(|s| SolidMesh::new(&s.graph).expect("run describes every solid with meshes"))
         .collect();
-    let (fused, keep, joints, free) = match stitch(&mut sidecar, &fused, &keep, &infos, &meshes, fuzzy) {
-        Ok(s) => {
-            branches.extend(s.branches);
-            (s.fused, s.keep, s.joints, Some(s.free))
-        }
-        Err(e) if e.code().is_some() => {
-            warnings.push(Warning {
-                code: "stitch_failed",
-                message: format!("the patches are written unstitched: {e}"),
-                solid: None,
-                faces: Vec::new(),
-            });
-            (fused, keep, Vec::new(), None)
-        }
-        Err(e) => return Err(kernel(e)),
-    };
+    let (fused, keep, joints, free) =
+        match stitch(&mut sidecar, &fused, &keep, &infos, &meshes, fuzzy) {
+            Ok(s) => {
+                branches.extend(s.branches);
+                (s.fused, s.keep, s.joints, Some(s.free))
+            }
+            Err(e) if e.code().is_some() => {
+                warnings.push(Warning {
+                    code: "stitch_failed",
+                    message: format!("the patches are written unstitched: {e}"),
+                    solid: None,
+                    faces: Vec::new(),
+                });
+                (fused, keep, Vec::new(), None)
+            }
+            Err(e) => return Err(kernel(e)),
+        };
     warnings.extend(joint_warnings(&joints));
     let sets = connected_sets(&fused, &keep);
-    let shells: Shells = sidecar.call(&Request::MakeShells { handle: fused.handle, shells: sets.clone() }).map_err(kernel)?;
+    let shells: Shells = sidecar
+        .call(&Request::MakeShells {
+            handle: fused.handle,
+            shells: sets.clone(),
+        })
+        .map_err(kernel)?;
     timings.stitch = t.elapsed().as_secs_f64();
 
     let legend = report::legend(&thickness);
@@ -135,7 +178,8 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     if made.is_empty() {
         warnings.push(Warning {
             code: "no_pairs",
-            message: "no face pairs found: the output is empty; check --t-max and --draft-max".to_string(),
+            message: "no face pairs found: the output is empty; check --t-max and --draft-max"
+                .to_string(),
             solid: None,
             faces: Vec::new(),
         });
@@ -149,28 +193,52 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         .map(|(j, &piece)| {
             let k = fused.faces[piece].patch;
             let t = made[k].plan.thickness.mean;
-            FaceAttributes { face: j, name: format!("patch {} t={t:.3}", k + 1), color: report::band_color(&legend, t), thickness: t }
+            FaceAttributes {
+                face: j,
+                name: format!("patch {} t={t:.3}", k + 1),
+                color: report::band_color(&legend, t),
+                thickness: t,
+            }
         })
         .collect();
     let utf8 = |p: &Pending| {
-        p.temp.to_str().map(str::to_string).ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
+        p.temp
+            .to_str()
+            .map(str::to_string)
+            .ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
     };
     let preview = preview_out.as_ref().map(utf8).transpose()?;
     sidecar
-        .call::<Written>(&Request::WriteStep { path: utf8(&step_out)?, handle: shells.handle, faces, preview })
+        .call::<Written>(&Request::WriteStep {
+            path: utf8(&step_out)?,
+            handle: shells.handle,
+            faces,
+            preview,
+        })
         .map_err(kernel)?;
     sidecar.shutdown();
     timings.write = t.elapsed().as_secs_f64();
     timings.total = started.elapsed().as_secs_f64();
 
-    let topology = crate::topology::summarise(&fused, &keep, &shells, sets.len(), &patches, &joints, free);
+    let topology =
+        crate::topology::summarise(&fused, &keep, &shells, sets.len(), &patches, &joints, free);
     let report = Report {
         report_version: REPORT_VERSION,
         midsurf_version: env!("CARGO_PKG_VERSION"),
         input: args.input.display().to_string(),
         output: args.output.display().to_string(),
-        parameters: Parameters { t_max: args.params.t_max, draft_max_deg: args.params.draft_max_deg },
-        solids: part.solids.iter().zip(&pairings).enumerate().map(|(i, (s, sp))| solid_report(i + 1, &s.graph, sp)).collect(),
+        parameters: Parameters {
+            t_max: args.params.t_max,
+            draft_max_deg: args.params.draft_max_deg,
+            position: args.position,
+        },
+        solids: part
+            .solids
+            .iter()
+            .zip(&pairings)
+            .enumerate()
+            .map(|(i, (s, sp))| solid_report(i + 1, &s.graph, sp))
+            .collect(),
         patches,
         trimmed: branches.iter().map(TrimmedReport::from_branch).collect(),
         joints,
@@ -187,7 +255,10 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         timings_s: args.timings.then_some(timings),
     };
     if let Some(pending) = &report_out {
-        pending.write((serde_json::to_string_pretty(&report).expect("reports always serialise") + "\n").as_bytes())?;
+        pending.write(
+            (serde_json::to_string_pretty(&report).expect("reports always serialise") + "\n")
+                .as_bytes(),
+        )?;
     }
     if let Some(pending) = &summary_out {
         pending.write(report.topology.text().as_bytes())?;
@@ -196,11 +267,18 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         pending.write(report::patches_csv(&report.patches).as_bytes())?;
     }
     step_out.commit()?;
-    for pending in [report_out, summary_out, csv_out, preview_out].into_iter().flatten() {
+    for pending in [report_out, summary_out, csv_out, preview_out]
+        .into_iter()
+        .flatten()
+    {
         pending.commit()?;
     }
     eprintln!("{}", summary_line(&args.output, &report));
-    Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })
+    Ok(if report.warnings.is_empty() {
+        Exit::Clean
+    } else {
+        Exit::Warnings
+    })
 }
 
 fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
@@ -264,8 +342,13 @@ fn patch_reports(made: &[Made], fused: &Fused, keep: &[bool]) -> Vec<PatchReport
     made.iter()
         .enumerate()
         .map(|(k, m)| {
-            let pieces: Vec<&crate::sidecar::protocol::FusedFace> =
-                fused.faces.iter().enumerate().filter(|(i, f)| keep[*i] && f.patch == k).map(|(_, f)| f).collect();
+            let pieces: Vec<&crate::sidecar::protocol::FusedFace> = fused
+                .faces
+                .iter()
+                .enumerate()
+                .filter(|(i, f)| keep[*i] && f.patch == k)
+                .map(|(_, f)| f)
+                .collect();
             PatchReport {
                 id: k + 1,
                 solid: m.solid,
@@ -286,7 +369,11 @@ fn pairing_warnings(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> Vec<W
         if let Some(why) = role.unpaired_reason() {
             out.push(Warning {
                 code: "unpaired_face",
-                message: format!("face {f} ({}, {:.3} mm2) has no partner: {why}", graph.faces[f].surface.kind_name(), graph.faces[f].area),
+                message: format!(
+                    "face {f} ({}, {:.3} mm2) has no partner: {why}",
+                    graph.faces[f].surface.kind_name(),
+                    graph.faces[f].area
+                ),
                 solid: Some(solid),
                 faces: vec![f],
             });
@@ -313,7 +400,12 @@ fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidRepo
         .enumerate()
         .filter_map(|(f, role)| {
             let face = &graph.faces[f];
-            role.unpaired_reason().map(|reason| Unpaired { face: f, surface: face.surface.kind_name(), area: face.area, reason })
+            role.unpaired_reason().map(|reason| Unpaired {
+                face: f,
+                surface: face.surface.kind_name(),
+                area: face.area,
+                reason,
+            })
         })
         .collect();
     let roles = RoleCounts::of(&sp.pairing.roles);

@@ -38,7 +38,11 @@ pub struct TopologyPatch {
 pub fn round(x: f64, digits: i32) -> f64 {
     let scale = 10f64.powi(digits);
     let r = (x * scale).round() / scale;
-    if r == 0.0 { 0.0 } else { r }
+    if r == 0.0 {
+        0.0
+    } else {
+        r
+    }
 }
 
 pub fn summarise(
@@ -50,10 +54,19 @@ pub fn summarise(
     joints: &[JointReport],
     free: Option<FreeEdges>,
 ) -> Topology {
-    let nonmanifold_edges =
-        fused.edges.iter().filter(|e| e.faces.iter().filter(|&&f| keep[f]).count() >= 3).count();
+    let nonmanifold_edges = fused
+        .edges
+        .iter()
+        .filter(|e| e.faces.iter().filter(|&&f| keep[f]).count() >= 3)
+        .count();
     let faces = shells.faces.len();
-    let mut joints: Vec<JointReport> = joints.iter().map(|j| JointReport { length: round(j.length, 2), ..j.clone() }).collect();
+    let mut joints: Vec<JointReport> = joints
+        .iter()
+        .map(|j| JointReport {
+            length: round(j.length, 2),
+            ..j.clone()
+        })
+        .collect();
     joints.sort_by(|a, b| (&a.patches, a.kind, a.status).cmp(&(&b.patches, b.kind, b.status)));
     Topology {
         faces,
@@ -62,7 +75,11 @@ pub fn summarise(
         euler: shells.vertices as i64 - shells.edges as i64 + faces as i64,
         components,
         nonmanifold_edges,
-        free_edges: free.map(|f| FreeEdges { rim_length: round(f.rim_length, 2), open_length: round(f.open_length, 2), ..f }),
+        free_edges: free.map(|f| FreeEdges {
+            rim_length: round(f.rim_length, 2),
+            open_length: round(f.open_length, 2),
+            ..f
+        }),
         patches: patches
             .iter()
             .map(|p| TopologyPatch {
@@ -83,24 +100,43 @@ impl Topology {
     pub fn text(&self) -> String {
         let mut out = format!(
             "faces {}  edges {}  vertices {}  euler {}  components {}  nonmanifold_edges {}\n",
-            self.faces, self.edges, self.vertices, self.euler, self.components, self.nonmanifold_edges
+            self.faces,
+            self.edges,
+            self.vertices,
+            self.euler,
+            self.components,
+            self.nonmanifold_edges
         );
         match &self.free_edges {
-            Some(f) => out += &format!(
-                "free edges: rim {} ({:.2} mm), open {} ({:.2} mm)\n",
-                f.rim_edges, f.rim_length, f.open_edges, f.open_length
-            ),
+            Some(f) => {
+                out += &format!(
+                    "free edges: rim {} ({:.2} mm), open {} ({:.2} mm)\n",
+                    f.rim_edges, f.rim_length, f.open_edges, f.open_length
+                )
+            }
             None => out += "free edges: not classified (stitching failed)\n",
         }
         for p in &self.patches {
             out += &format!(
                 "patch {} {} t={:.3} area={:.1} faces={} source={:?}\n",
-                p.id, p.kind.name(), p.thickness, p.area, p.faces, p.source_faces
+                p.id,
+                p.kind.name(),
+                p.thickness,
+                p.area,
+                p.faces,
+                p.source_faces
             );
         }
         for j in &self.joints {
             let ids: Vec<String> = j.patches.iter().map(usize::to_string).collect();
-            out += &format!("joint {} {} {} edges={} length={:.2}\n", ids.join("-"), j.kind, j.status, j.edges, j.length);
+            out += &format!(
+                "joint {} {} {} edges={} length={:.2}\n",
+                ids.join("-"),
+                j.kind,
+                j.status,
+                j.edges,
+                j.length
+            );
         }
         out
     }

@@ -7,6 +7,7 @@ that OCCT still reports as valid (KERNEL_NOTES), so that case is refused before 
 import math
 
 from OCP.BRepAdaptor import BRepAdaptor_Surface
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.BRepOffsetAPI import BRepOffsetAPI_MakeOffsetShape
 from OCP.BRepTools import BRepTools
 from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Sphere, GeomAbs_Torus
@@ -29,6 +30,9 @@ def offset_face(face: TopoDS_Face, distance: float) -> TopoDS_Face:
 
     Raises OpError `patch_failed` (message without the face id: the caller adds it).
     """
+    if distance == 0.0:
+        # A patch on the face's own skin (offset position top): MakeOffsetShape would fail or copy anyway.
+        return TopoDS.Face(BRepBuilderAPI_Copy(face).Shape())
     _refuse_collapse(face, distance)
     maker = BRepOffsetAPI_MakeOffsetShape()
     try:

@@ -31,22 +31,25 @@ class Clip:
 
 
 def offset_patch(
-    solid: TopoDS_Shape, face_ids: list[int], distance: float, clip: Clip | None = None
+    solid: TopoDS_Shape, face_ids: list[int], distance: float, clip: Clip | None = None, reverse: bool = False
 ) -> tuple[TopoDS_Compound, list]:
-    return _patch(indexed_map(solid, TopAbs_FACE), face_ids, lambda face: offset_face(face, distance), clip)
+    faces = indexed_map(solid, TopAbs_FACE)
+    return _patch(faces, face_ids, lambda face: offset_face(face, distance), clip, reverse)
 
 
 def projected_patch(
-    solid: TopoDS_Shape, face_ids: list[int], origin: Vec, normal: Vec, clip: Clip | None = None
+    solid: TopoDS_Shape, face_ids: list[int], origin: Vec, normal: Vec, clip: Clip | None = None, reverse: bool = False
 ) -> tuple[TopoDS_Compound, list]:
-    return _patch(indexed_map(solid, TopAbs_FACE), face_ids, lambda face: project_face(face, origin, normal), clip)
+    faces = indexed_map(solid, TopAbs_FACE)
+    return _patch(faces, face_ids, lambda face: project_face(face, origin, normal), clip, reverse)
 
 
 def _patch(
-    face_map: IndexedShapeMap, face_ids: list[int], make: FaceMaker, clip: Clip | None
+    face_map: IndexedShapeMap, face_ids: list[int], make: FaceMaker, clip: Clip | None, reverse: bool
 ) -> tuple[TopoDS_Compound, list[dict[str, Any]]]:
     """(compound of the new faces, the reply's `faces`: one entry per face made, several per source face when
-    a clip splits it); OpError `patch_failed` naming the face."""
+    a clip splits it); OpError `patch_failed` naming the face. `reverse` turns every new face over (the wall's
+    reference side is its bottom: the patch normal then points out of the top side)."""
     builder = BRep_Builder()
     compound = TopoDS_Compound()
     builder.MakeCompound(compound)
@@ -57,6 +60,8 @@ def _patch(
             if clip is not None and clip.partners[k]:
                 partners = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.partners[k]]
                 new_faces = clip_to_partners(new_faces[0], partners, clip.fuzzy, clip.narrow)
+            if reverse:
+                new_faces = [TopoDS.Face(f.Reversed()) for f in new_faces]
             described.extend({"source": face_id, **measure(f)} for f in new_faces)
         except Exception as exc:  # OpError from our checks, Standard_Failure from OCCT
             raise OpError(f"face {face_id}: {one_line(exc)}", "patch_failed") from exc

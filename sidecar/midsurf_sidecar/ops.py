@@ -66,12 +66,15 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     if ("offset" in args) == ("plane" in args):
         raise BadArgs("make_patch needs exactly one of `offset` (mm) and `plane` ({origin, normal})")
     clip = _clip(args, count, len(face_ids))
+    reverse = args.get("reverse", False)
+    if not isinstance(reverse, bool):
+        raise BadArgs("`reverse` must be true or false")
     if "offset" in args:
-        patch, faces = mid_patch.offset_patch(solid, face_ids, require_number(args, "offset"), clip)
+        patch, faces = mid_patch.offset_patch(solid, face_ids, require_number(args, "offset"), clip, reverse)
     else:
         plane = require_object(args, "plane")
         origin, normal = require_point(plane, "origin"), require_direction(plane, "normal")
-        patch, faces = mid_patch.projected_patch(solid, face_ids, origin, normal, clip)
+        patch, faces = mid_patch.projected_patch(solid, face_ids, origin, normal, clip, reverse)
     return {"handle": store.put(patch), "faces": faces}
 
 

@@ -13,7 +13,7 @@ from .args import require_int
 from .errors import BadArgs, OpError, one_line
 from .handles import HandleStore
 
-PROTOCOL_VERSION = 1
+PROTOCOL_VERSION = 2
 
 
 class Session:

@@ -86,6 +86,23 @@ def test_plate_faces_move_into_the_material(client, tmp_path):
     assert BRepCheck_Analyzer(client.session.store.get(ok["handle"])).IsValid()
 
 
+def test_a_patch_on_its_own_skin_is_a_copy_and_reverse_turns_it_over(client, tmp_path):
+    handle = client.load(box(40, 40, 5), tmp_path)
+    top = face_with(graph(client, handle), "plane", lambda f: f["normal"][2] > 0.99)["id"]
+    same = client.ok("make_patch", handle=handle, faces=[top], offset=0.0)["faces"][0]
+    assert same["centroid"] == pytest.approx([20, 20, 5])
+    assert same["normal"] == pytest.approx([0, 0, 1], abs=1e-12)
+    # Moved onto the bottom skin and turned over: the normal points out of the bottom side, as it does when
+    # the bottom is a wall's top side.
+    ok = client.ok("make_patch", handle=handle, faces=[top], offset=-5.0, reverse=True)
+    assert ok["faces"][0]["centroid"] == pytest.approx([20, 20, 0])
+    assert ok["faces"][0]["normal"] == pytest.approx([0, 0, -1], abs=1e-12)
+    (face,) = patch_faces(client, ok["handle"])
+    assert {round(z, 9) for _, _, z in vertices(face)} == {0.0}
+    err = client.err("make_patch", handle=handle, faces=[top], offset=0.0, reverse="yes")
+    assert "reverse" in err["message"]
+
+
 def test_bend_cylinders_meet_at_the_mid_radius(client, tmp_path):
     handle = client.load(bent_sheet(), tmp_path)
     g = graph(client, handle)

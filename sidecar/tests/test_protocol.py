@@ -6,6 +6,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from midsurf_sidecar.server import PROTOCOL_VERSION
+
 SIDECAR_DIR = Path(__file__).resolve().parents[1]
 
 
@@ -32,7 +34,7 @@ def test_session_over_pipes(tmp_path, e_plate_path):
     truncated.write_bytes(e_plate_path.read_bytes()[:50_000])
     process = run_sidecar([
         {"id": 0, "op": "ping", "args": {}},
-        {"id": 1, "op": "hello", "args": {"protocol": 1}},
+        {"id": 1, "op": "hello", "args": {"protocol": PROTOCOL_VERSION}},
         {"id": 2, "op": "ping", "args": {}},
         {"id": 3, "op": "load_step", "args": {"path": str(truncated)}},
         {"id": 4, "op": "load_step", "args": {"path": str(e_plate_path)}},
@@ -46,7 +48,7 @@ def test_session_over_pipes(tmp_path, e_plate_path):
     got = replies(process)
     assert [r["id"] for r in got] == list(range(9))
     assert got[0]["err"]["code"] == "no_handshake"
-    assert got[1]["ok"]["protocol"] == 1
+    assert got[1]["ok"]["protocol"] == PROTOCOL_VERSION
     assert got[2]["ok"] == {"pong": True}
     assert got[3]["err"]["code"] in ("read_failed", "no_solid")
     assert got[4]["ok"]["solids"][0] == {**got[4]["ok"]["solids"][0], "handle": 1, "faces": 56}
@@ -59,13 +61,13 @@ def test_session_over_pipes(tmp_path, e_plate_path):
 
 
 def test_end_of_input_exits_cleanly():
-    process = run_sidecar([{"id": 0, "op": "hello", "args": {"protocol": 1}}])
+    process = run_sidecar([{"id": 0, "op": "hello", "args": {"protocol": PROTOCOL_VERSION}}])
     assert process.returncode == 0, process.stderr
-    assert replies(process)[0]["ok"]["protocol"] == 1
+    assert replies(process)[0]["ok"]["protocol"] == PROTOCOL_VERSION
 
 
 def test_garbage_and_blank_lines_do_not_kill_the_process():
-    hello = {"id": 0, "op": "hello", "args": {"protocol": 1}}
+    hello = {"id": 0, "op": "hello", "args": {"protocol": PROTOCOL_VERSION}}
     process = run_sidecar(["", "{not json", hello, {"id": 1, "op": "ping"}])
     assert process.returncode == 0, process.stderr
     got = replies(process)

@@ -5,7 +5,10 @@ use glam::DVec2;
 /// Signed area of a polygon (counter-clockwise positive).
 pub fn signed_area(poly: &[DVec2]) -> f64 {
     let n = poly.len();
-    (0..n).map(|i| poly[i].perp_dot(poly[(i + 1) % n])).sum::<f64>() * 0.5
+    (0..n)
+        .map(|i| poly[i].perp_dot(poly[(i + 1) % n]))
+        .sum::<f64>()
+        * 0.5
 }
 
 /// The part of `subject` inside the convex, counter-clockwise polygon `clip`.
@@ -36,7 +39,13 @@ pub fn clip_convex(subject: &[DVec2], clip: &[DVec2]) -> Vec<DVec2> {
 
 /// Area of the intersection of two triangles, in any orientation.
 pub fn triangle_overlap(a: [DVec2; 3], b: [DVec2; 3]) -> f64 {
-    let ccw = |t: [DVec2; 3]| if signed_area(&t) < 0.0 { [t[0], t[2], t[1]] } else { t };
+    let ccw = |t: [DVec2; 3]| {
+        if signed_area(&t) < 0.0 {
+            [t[0], t[2], t[1]]
+        } else {
+            t
+        }
+    };
     let piece = clip_convex(&ccw(a), &ccw(b));
     if piece.len() < 3 {
         0.0
@@ -53,10 +62,14 @@ pub fn bounds(t: &[DVec2; 3]) -> (DVec2, DVec2) {
 /// Area of the intersection of two triangle soups, each a partition of a region without self-overlap
 /// (a face's mesh projected to 2D). Triangles of `b` are sorted by their lower x bound and swept.
 pub fn soup_overlap(a: &[[DVec2; 3]], b: &[[DVec2; 3]]) -> f64 {
-    let mut b_sorted: Vec<(DVec2, DVec2, usize)> = b.iter().enumerate().map(|(i, t)| {
-        let (lo, hi) = bounds(t);
-        (lo, hi, i)
-    }).collect();
+    let mut b_sorted: Vec<(DVec2, DVec2, usize)> = b
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let (lo, hi) = bounds(t);
+            (lo, hi, i)
+        })
+        .collect();
     b_sorted.sort_by(|x, y| x.0.x.total_cmp(&y.0.x));
     let mut total = 0.0;
     for ta in a {

@@ -4,8 +4,8 @@
 use serde::Serialize;
 
 use super::{NearMiss, Pair, PairKind, Thickness};
-use crate::union_find::find;
 use crate::face_graph::{FaceGraph, FaceId};
+use crate::union_find::find;
 
 /// The two skins of a wall; `A` holds the group's lowest face id.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
@@ -61,9 +61,11 @@ impl FaceRole {
     /// Why an unpaired face found no partner (None for the other roles).
     pub fn unpaired_reason(&self) -> Option<String> {
         match self {
-            FaceRole::Unpaired { near_miss: Some(m) } => {
-                Some(format!("best candidate face {}: {}", m.candidate, m.rejection.describe()))
-            }
+            FaceRole::Unpaired { near_miss: Some(m) } => Some(format!(
+                "best candidate face {}: {}",
+                m.candidate,
+                m.rejection.describe()
+            )),
             FaceRole::Unpaired { near_miss: None } => Some("no face within t_max".to_string()),
             _ => None,
         }
@@ -136,7 +138,10 @@ pub fn group_and_classify(
                 return FaceRole::Suppressed;
             }
             if let Some(group) = group_of[f] {
-                return FaceRole::Pair { group, side: side_of[f] };
+                return FaceRole::Pair {
+                    group,
+                    side: side_of[f],
+                };
             }
             let neighbours = graph.neighbours(f);
             let joined = neighbours.iter().find_map(|&a| {
@@ -155,7 +160,9 @@ pub fn group_and_classify(
             if !touching.is_empty() {
                 return FaceRole::Connecting { groups: touching };
             }
-            FaceRole::Unpaired { near_miss: near[f].clone() }
+            FaceRole::Unpaired {
+                near_miss: near[f].clone(),
+            }
         })
         .collect();
     (groups, roles)
@@ -169,7 +176,11 @@ fn finish_group(group: &mut PairGroup, graph: &FaceGraph, pairs: &[Pair]) {
     group.side_conflicts.sort_unstable();
     group.side_conflicts.dedup();
     let area = |side: &Vec<FaceId>| side.iter().map(|&f| graph.faces[f].area).sum::<f64>();
-    group.reference = if area(&group.sides[1]) > area(&group.sides[0]) { Side::B } else { Side::A };
+    group.reference = if area(&group.sides[1]) > area(&group.sides[0]) {
+        Side::B
+    } else {
+        Side::A
+    };
 
     let mut by_kind: Vec<(PairKind, f64)> = Vec::new();
     let (mut weighted, mut total) = (0.0, 0.0);
@@ -188,6 +199,10 @@ fn finish_group(group: &mut PairGroup, graph: &FaceGraph, pairs: &[Pair]) {
     by_kind.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
     group.kind = by_kind.first().map(|k| k.0).unwrap_or(PairKind::Parallel);
     group.overlap_area = total;
-    let mean = if total > 0.0 { weighted / total } else { 0.5 * (min + max) };
+    let mean = if total > 0.0 {
+        weighted / total
+    } else {
+        0.5 * (min + max)
+    };
     group.thickness = Thickness { mean, min, max };
 }

@@ -53,7 +53,11 @@ pub struct Thickness {
 
 impl Thickness {
     pub fn uniform(t: f64) -> Thickness {
-        Thickness { mean: t, min: t, max: t }
+        Thickness {
+            mean: t,
+            min: t,
+            max: t,
+        }
     }
 }
 
@@ -74,19 +78,35 @@ pub struct Pair {
 #[serde(tag = "test", rename_all = "snake_case")]
 pub enum Rejection {
     /// Surface kinds that cannot be the two skins of one wall (a plane and a cylinder...).
-    Incompatible { kinds: [&'static str; 2] },
+    Incompatible {
+        kinds: [&'static str; 2],
+    },
     /// Normals neither opposite nor within the draft limit.
-    Angle { degrees: f64, limit_degrees: f64 },
+    Angle {
+        degrees: f64,
+        limit_degrees: f64,
+    },
     /// Curved faces that do not share their axis or centre.
-    NotCoaxial { offset: f64 },
+    NotCoaxial {
+        offset: f64,
+    },
     /// Both faces have the material on the same side (two shafts, two holes...).
     SameSense,
     /// The other face is not behind this one, so no material lies between them.
     NotFacing,
-    Distance { distance: f64, limit: f64 },
-    Overlap { share: f64, limit: f64 },
+    Distance {
+        distance: f64,
+        limit: f64,
+    },
+    Overlap {
+        share: f64,
+        limit: f64,
+    },
     /// A freeform pair whose distance varies too much to be one wall.
-    Spread { min: f64, max: f64 },
+    Spread {
+        min: f64,
+        max: f64,
+    },
 }
 
 impl Rejection {
@@ -105,14 +125,23 @@ impl Rejection {
 
     pub fn describe(&self) -> String {
         match self {
-            Rejection::Incompatible { kinds } => format!("{} and {} cannot form a wall", kinds[0], kinds[1]),
-            Rejection::Angle { degrees, limit_degrees } => {
+            Rejection::Incompatible { kinds } => {
+                format!("{} and {} cannot form a wall", kinds[0], kinds[1])
+            }
+            Rejection::Angle {
+                degrees,
+                limit_degrees,
+            } => {
                 format!("normals {degrees:.2} deg from opposite (limit {limit_degrees:.2})")
             }
-            Rejection::NotCoaxial { offset } => format!("not coaxial/concentric (offset {offset:.4})"),
+            Rejection::NotCoaxial { offset } => {
+                format!("not coaxial/concentric (offset {offset:.4})")
+            }
             Rejection::SameSense => "material on the same side of both faces".to_string(),
             Rejection::NotFacing => "faces do not enclose material between them".to_string(),
-            Rejection::Distance { distance, limit } => format!("distance {distance:.4} > t_max {limit:.4}"),
+            Rejection::Distance { distance, limit } => {
+                format!("distance {distance:.4} > t_max {limit:.4}")
+            }
             Rejection::Overlap { share, limit } => {
                 format!("overlap {:.1}% < {:.1}%", share * 100.0, limit * 100.0)
             }
@@ -171,14 +200,21 @@ pub fn detect(graph: &FaceGraph, tol: &Tolerances, pairable: &[bool]) -> Pairing
                         Some(old) => rejection.stage() > old.rejection.stage(),
                     };
                     if better {
-                        near[me] = Some(NearMiss { candidate: other, rejection: rejection.clone() });
+                        near[me] = Some(NearMiss {
+                            candidate: other,
+                            rejection: rejection.clone(),
+                        });
                     }
                 }
             }
         }
     }
     let (groups, roles) = groups::group_and_classify(graph, &pairs, &near, pairable);
-    Pairing { pairs, groups, roles }
+    Pairing {
+        pairs,
+        groups,
+        roles,
+    }
 }
 
 #[cfg(test)]

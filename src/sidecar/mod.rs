@@ -16,13 +16,25 @@ pub enum SidecarError {
     /// The Python interpreter or the sidecar package could not be found or started.
     Spawn { why: String },
     /// The op ran and failed: the sidecar's own error code and message.
-    Op { op: String, code: String, message: String },
+    Op {
+        op: String,
+        code: String,
+        message: String,
+    },
     /// The process ended (crash, segfault, killed) while we waited for `op`.
     Died { op: String, stderr: String },
     /// No reply to `op` within its timeout; the process was killed.
-    Timeout { op: String, after: Duration, stderr: String },
+    Timeout {
+        op: String,
+        after: Duration,
+        stderr: String,
+    },
     /// A reply that does not follow the protocol.
-    BadReply { op: String, why: String, line: String },
+    BadReply {
+        op: String,
+        why: String,
+        line: String,
+    },
 }
 
 impl SidecarError {
@@ -37,7 +49,12 @@ impl SidecarError {
 
 /// The last line of the child's stderr that says something, for one-line error messages.
 fn last_words(stderr: &str) -> String {
-    stderr.lines().rev().find(|l| !l.trim().is_empty()).map(|l| format!(" (sidecar stderr: {})", l.trim())).unwrap_or_default()
+    stderr
+        .lines()
+        .rev()
+        .find(|l| !l.trim().is_empty())
+        .map(|l| format!(" (sidecar stderr: {})", l.trim()))
+        .unwrap_or_default()
 }
 
 impl fmt::Display for SidecarError {
@@ -46,7 +63,11 @@ impl fmt::Display for SidecarError {
             SidecarError::Spawn { why } => write!(f, "cannot start the OCCT sidecar: {why}"),
             SidecarError::Op { message, .. } => write!(f, "{message}"),
             SidecarError::Died { op, stderr } => {
-                write!(f, "the OCCT sidecar died during '{op}'{}", last_words(stderr))
+                write!(
+                    f,
+                    "the OCCT sidecar died during '{op}'{}",
+                    last_words(stderr)
+                )
             }
             SidecarError::Timeout { op, after, stderr } => write!(
                 f,
@@ -55,7 +76,10 @@ impl fmt::Display for SidecarError {
                 last_words(stderr)
             ),
             SidecarError::BadReply { op, why, line } => {
-                write!(f, "the OCCT sidecar broke the protocol during '{op}': {why}: {line}")
+                write!(
+                    f,
+                    "the OCCT sidecar broke the protocol during '{op}': {why}: {line}"
+                )
             }
         }
     }
