@@ -13,10 +13,8 @@ fn plate_field(k: usize) -> FaceGraph {
     let mut faces = Vec::with_capacity(6 * k * k);
     for j in 0..k {
         for i in 0..k {
-            let plate = synthetic::cuboid(
-                DVec3::new(12.0 * i as f64, 12.0 * j as f64, 0.0),
-                DVec3::new(10.0, 10.0, 2.0),
-            );
+            let plate =
+                synthetic::cuboid(DVec3::new(12.0 * i as f64, 12.0 * j as f64, 0.0), DVec3::new(10.0, 10.0, 2.0));
             faces.extend(plate.faces);
         }
     }
@@ -39,11 +37,7 @@ fn main() {
             })
             .fold(f64::INFINITY, f64::min);
         let nlogn = n as f64 * (n as f64).log2();
-        println!(
-            "pairing {n:>7} faces: {:>8.3} s  ({:.3} us per n log2 n)",
-            best,
-            best / nlogn * 1e6
-        );
+        println!("pairing {n:>7} faces: {:>8.3} s  ({:.3} us per n log2 n)", best, best / nlogn * 1e6);
         rows.push((n, best));
     }
     let (n0, t0) = rows[0];

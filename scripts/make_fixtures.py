@@ -212,6 +212,66 @@ def open_box_ribs() -> Fixture:
     return Fixture(single_solid(part), 80 * 60 * 30 - 76 * 56 * 28 + 2 * (2 * 56 * 15), 19)
 
 
+# Small-feature fixtures (issue 6): each has a feature-free twin above or here whose mid-surface topology it
+# must reproduce once its features are suppressed (tests/feature_twins.rs).
+
+
+def edges_along_y(part: Shape, x: float, z: float) -> list[Edge]:
+    """The straight edges of `part` running along y through (x, *, z)."""
+    return [
+        e
+        for e in part.edges().filter_by(Axis.Y)
+        if abs(e.center().X - x) < 1e-6 and abs(e.center().Z - z) < 1e-6
+    ]
+
+
+def t_rib_fillets() -> Fixture:
+    """t_rib with R 1.5 fillets at both sides of the rib root (concave, tangent to the plate top and the rib).
+
+    Twin: t_rib. Faces: 12 (t_rib's 10 and two fillets). Volume: t_rib's + 2 * 60 * 1.5^2 * (1 - pi / 4).
+    """
+    part = box(0, 0, 0, 100, 60, 2) + box(49, 0, 2, 2, 60, 20)
+    part = part.fillet(1.5, edges_along_y(part, 49, 2) + edges_along_y(part, 51, 2))
+    return Fixture(single_solid(part), 14400 + 2 * 60 * 1.5**2 * (1 - math.pi / 4), 12)
+
+
+def l_bracket_round() -> Fixture:
+    """l_bracket with its outer corner rounded R 1 (one side only: the inner corner stays sharp).
+
+    Twin: l_bracket. Faces: 9. Volume: l_bracket's - 40 * 1^2 * (1 - pi / 4).
+    """
+    profile = polygon_xz([(0, 0), (60, 0), (60, 2), (2, 2), (2, 60), (0, 60)])
+    part = prism_xz(profile, 40)
+    part = part.fillet(1, edges_along_y(part, 0, 0))
+    return Fixture(single_solid(part), 9440 - 40 * (1 - math.pi / 4), 9)
+
+
+def plate_large_hole() -> Fixture:
+    """flat_plate (100 x 60 x 2) with a through hole D 20 on the axis (70, 30): larger than a wall's
+    thickness, so it stays in the mid-surface. Twin of plate_holes. Faces: 7 (a full cylinder is one face).
+    Volume: 12000 - 2 * pi * 10^2.
+    """
+    part = box(0, 0, 0, 100, 60, 2) - cylinder_z(70, 30, -1, 10, 4)
+    return Fixture(single_solid(part), 12000 - 2 * math.pi * 100, 7)
+
+
+def plate_holes() -> Fixture:
+    """plate_large_hole with a second through hole D 1.5 on the axis (25, 30): under the default limit (the
+    wall-thickness limit, 3 here), so it is filled. Faces: 8. Volume: 12000 - 2 * pi * (10^2 + 0.75^2).
+    """
+    part = box(0, 0, 0, 100, 60, 2) - cylinder_z(70, 30, -1, 10, 4) - cylinder_z(25, 30, -1, 0.75, 4)
+    return Fixture(single_solid(part), 12000 - 2 * math.pi * (100 + 0.75**2), 8)
+
+
+def plate_boss() -> Fixture:
+    """flat_plate with a boss D 6 x 4 high on its top at (50, 30): a box diagonal of 9.4, under the default
+    limit (4 x the wall-thickness limit, 12 here), so it is removed. Twin: flat_plate. Faces: 8.
+    Volume: 12000 + 4 * pi * 3^2.
+    """
+    part = box(0, 0, 0, 100, 60, 2) + cylinder_z(50, 30, 2, 3, 4)
+    return Fixture(single_solid(part), 12000 + 4 * math.pi * 9, 8)
+
+
 PARTS: list[Callable[[], Fixture]] = [
     flat_plate,
     l_bracket,
@@ -221,6 +281,11 @@ PARTS: list[Callable[[], Fixture]] = [
     drafted_rib,
     plate_features,
     open_box_ribs,
+    t_rib_fillets,
+    l_bracket_round,
+    plate_large_hole,
+    plate_holes,
+    plate_boss,
 ]
 
 

@@ -9,6 +9,7 @@ use serde::Serialize;
 use crate::error::Error;
 use crate::exit::Exit;
 use crate::face_graph::FaceGraph;
+use crate::features::LimitArgs;
 use crate::inspect::{self, SolidSummary};
 use crate::pairs_report::{self, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
@@ -107,6 +108,20 @@ pub struct PairingArgs {
     /// Largest draft angle of a wall side in degrees; draft pairs differ by up to twice this.
     #[arg(long, default_value_t = crate::tolerance::DEFAULT_DRAFT_MAX_DEG, value_parser = draft_degrees)]
     pub draft_max: f64,
+    /// Fillets and rounds up to this radius (mm) are suppressed: they do not pair, the joints bridge them
+    /// [default: 2 x t_max].
+    #[arg(long, value_parser = non_negative_mm)]
+    pub fillet_max: Option<f64>,
+    /// Holes up to this diameter (mm) are filled in the mid-surface [default: t_max].
+    #[arg(long, value_parser = non_negative_mm)]
+    pub hole_max: Option<f64>,
+    /// Bosses, protrusions and tabs standing on a wall within a box of this diagonal (mm) are removed and
+    /// their footprint filled [default: 4 x t_max].
+    #[arg(long, value_parser = non_negative_mm)]
+    pub boss_max: Option<f64>,
+    /// Keep every hole, whatever its diameter.
+    #[arg(long)]
+    pub keep_holes: bool,
 }
 
 impl PairingArgs {
@@ -114,6 +129,12 @@ impl PairingArgs {
         PairingParams {
             t_max: self.t_max,
             draft_max_deg: self.draft_max,
+            limits: LimitArgs {
+                fillet_max: self.fillet_max,
+                hole_max: self.hole_max,
+                boss_max: self.boss_max,
+                keep_holes: self.keep_holes,
+            },
         }
     }
 }
@@ -122,6 +143,13 @@ fn positive_mm(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
         _ => Err(format!("'{s}' is not a positive length in mm")),
+    }
+}
+
+fn non_negative_mm(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err(format!("'{s}' is not a length in mm (0 or more)")),
     }
 }
 
@@ -135,11 +163,7 @@ fn draft_degrees(s: &str) -> Result<f64, String> {
 pub fn run(cli: Cli) -> Result<Exit, Error> {
     match cli.command {
         Command::Inspect { part, json, mesh } => inspect_command(part, json, mesh),
-        Command::Pairs {
-            part,
-            json,
-            pairing,
-        } => pairs_command(part, json, pairing.params()),
+        Command::Pairs { part, json, pairing } => pairs_command(part, json, pairing.params()),
         Command::Run(r) => crate::run::run(&crate::run::RunArgs {
             input: r.part,
             output: r.output,
@@ -168,34 +192,15 @@ struct SolidJson<'a> {
 
 fn inspect_command(path: PathBuf, json: bool, mesh: bool) -> Result<Exit, Error> {
     let mut sidecar = part::start_sidecar(&path)?;
-    let part = part::load(
-        &mut sidecar,
-        &path,
-        MeshRequest {
-            mesh,
-            tolerance: None,
-        },
-    )?;
+    let part = part::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: None })?;
     sidecar.shutdown();
     let file = path.display().to_string();
     let text = if json {
-        let solids = part
-            .solids
-            .iter()
-            .map(|s| SolidJson {
-                summary: inspect::summarize(&s.graph),
-                graph: &s.graph,
-            })
-            .collect();
-        serde_json::to_string_pretty(&InspectJson { file, solids })
-            .expect("face graphs always serialise")
-            + "\n"
+        let solids =
+            part.solids.iter().map(|s| SolidJson { summary: inspect::summarize(&s.graph), graph: &s.graph }).collect();
+        serde_json::to_string_pretty(&InspectJson { file, solids }).expect("face graphs always serialise") + "\n"
     } else {
-        let summaries: Vec<SolidSummary> = part
-            .solids
-            .iter()
-            .map(|s| inspect::summarize(&s.graph))
-            .collect();
+        let summaries: Vec<SolidSummary> = part.solids.iter().map(|s| inspect::summarize(&s.graph)).collect();
         inspect::render(&file, &summaries)
     };
     print(&text)?;
@@ -216,24 +221,12 @@ struct PairsJson<'a> {
 
 fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exit, Error> {
     let mut sidecar = part::start_sidecar(&path)?;
-    let part = part::load(
-        &mut sidecar,
-        &path,
-        MeshRequest {
-            mesh: true,
-            tolerance: None,
-        },
-    )?;
+    let part = part::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
     sidecar.shutdown();
     let solids: Vec<SolidPairing> = pairs_report::pair_part(&part, params);
     let file = path.display().to_string();
     let text = if json {
-        serde_json::to_string_pretty(&PairsJson {
-            file,
-            solids: &solids,
-        })
-        .expect("pairings always serialise")
-            + "\n"
+        serde_json::to_string_pretty(&PairsJson { file, solids: &solids }).expect("pairings always serialise") + "\n"
     } else {
         let mut out = format!("{file}: {} solid(s)\n", solids.len());
         for (i, (solid, sp)) in part.solids.iter().zip(&solids).enumerate() {

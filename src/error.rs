@@ -17,17 +17,11 @@ pub enum Error {
 
 impl Error {
     pub fn input(path: &Path, problem: impl Into<String>) -> Error {
-        Error::Input {
-            path: path.to_path_buf(),
-            problem: problem.into(),
-        }
+        Error::Input { path: path.to_path_buf(), problem: problem.into() }
     }
 
     pub fn output(path: &Path, problem: impl Into<String>) -> Error {
-        Error::Output {
-            path: path.to_path_buf(),
-            problem: problem.into(),
-        }
+        Error::Output { path: path.to_path_buf(), problem: problem.into() }
     }
 }
 
@@ -43,12 +37,7 @@ impl fmt::Display for Error {
                 write!(f, "{}: {}", path.display(), one_line(&error.to_string()))
             }
             Error::Output { path, problem } => {
-                write!(
-                    f,
-                    "{}: cannot write output: {}",
-                    path.display(),
-                    one_line(problem)
-                )
+                write!(f, "{}: cannot write output: {}", path.display(), one_line(problem))
             }
         }
     }

@@ -34,13 +34,7 @@ mod tests {
 
     #[test]
     fn codes_are_the_documented_ones_and_worst_wins() {
-        assert_eq!(
-            [Exit::Clean, Exit::Warnings, Exit::Failed].map(Exit::code),
-            [0, 1, 2]
-        );
-        assert_eq!(
-            Exit::Clean.max(Exit::Warnings).max(Exit::Clean),
-            Exit::Warnings
-        );
+        assert_eq!([Exit::Clean, Exit::Warnings, Exit::Failed].map(Exit::code), [0, 1, 2]);
+        assert_eq!(Exit::Clean.max(Exit::Warnings).max(Exit::Clean), Exit::Warnings);
     }
 }

@@ -27,10 +27,7 @@ impl Bbox {
     }
 
     pub fn inflated(&self, by: f64) -> Bbox {
-        Bbox {
-            min: self.min - DVec3::splat(by),
-            max: self.max + DVec3::splat(by),
-        }
+        Bbox { min: self.min - DVec3::splat(by), max: self.max + DVec3::splat(by) }
     }
 
     pub fn overlaps(&self, other: &Bbox) -> bool {
@@ -43,36 +40,11 @@ impl Bbox {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Surface {
-    Plane {
-        origin: DVec3,
-        normal: DVec3,
-    },
-    Cylinder {
-        origin: DVec3,
-        axis: DVec3,
-        radius: f64,
-        convex: bool,
-    },
-    Cone {
-        origin: DVec3,
-        axis: DVec3,
-        radius: f64,
-        half_angle: f64,
-        apex: DVec3,
-        convex: bool,
-    },
-    Sphere {
-        center: DVec3,
-        radius: f64,
-        convex: bool,
-    },
-    Torus {
-        center: DVec3,
-        axis: DVec3,
-        major_radius: f64,
-        minor_radius: f64,
-        convex: bool,
-    },
+    Plane { origin: DVec3, normal: DVec3 },
+    Cylinder { origin: DVec3, axis: DVec3, radius: f64, convex: bool },
+    Cone { origin: DVec3, axis: DVec3, radius: f64, half_angle: f64, apex: DVec3, convex: bool },
+    Sphere { center: DVec3, radius: f64, convex: bool },
+    Torus { center: DVec3, axis: DVec3, major_radius: f64, minor_radius: f64, convex: bool },
     Bspline,
     Bezier,
     Revolution,
@@ -240,10 +212,7 @@ impl FaceGraph {
                 problems.push(format!("EdgeFaceOutOfRange: edge {i} names {:?}", e.faces));
             }
             if e.vertices.iter().any(|&v| v >= self.vertices.len()) {
-                problems.push(format!(
-                    "EdgeVertexOutOfRange: edge {i} names {:?}",
-                    e.vertices
-                ));
+                problems.push(format!("EdgeVertexOutOfRange: edge {i} names {:?}", e.vertices));
             }
         }
         problems
@@ -256,19 +225,10 @@ mod tests {
 
     #[test]
     fn surface_parses_from_protocol_json() {
-        let s: Surface = serde_json::from_str(
-            r#"{"kind":"cylinder","origin":[0,0,0],"axis":[0,0,1],"radius":3.0,"convex":false}"#,
-        )
-        .unwrap();
-        assert_eq!(
-            s,
-            Surface::Cylinder {
-                origin: DVec3::ZERO,
-                axis: DVec3::Z,
-                radius: 3.0,
-                convex: false
-            }
-        );
+        let s: Surface =
+            serde_json::from_str(r#"{"kind":"cylinder","origin":[0,0,0],"axis":[0,0,1],"radius":3.0,"convex":false}"#)
+                .unwrap();
+        assert_eq!(s, Surface::Cylinder { origin: DVec3::ZERO, axis: DVec3::Z, radius: 3.0, convex: false });
         let f: Surface = serde_json::from_str(r#"{"kind":"bspline"}"#).unwrap();
         assert!(f.is_freeform());
         assert!(!s.is_freeform());
@@ -276,14 +236,8 @@ mod tests {
 
     #[test]
     fn bbox_overlap_and_inflate() {
-        let a = Bbox {
-            min: DVec3::ZERO,
-            max: DVec3::ONE,
-        };
-        let b = Bbox {
-            min: DVec3::splat(1.5),
-            max: DVec3::splat(2.0),
-        };
+        let a = Bbox { min: DVec3::ZERO, max: DVec3::ONE };
+        let b = Bbox { min: DVec3::splat(1.5), max: DVec3::splat(2.0) };
         assert!(!a.overlaps(&b));
         assert!(a.inflated(0.5).overlaps(&b));
     }

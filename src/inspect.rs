@@ -25,9 +25,7 @@ pub struct SolidSummary {
 pub fn summarize(graph: &FaceGraph) -> SolidSummary {
     let mut faces_by_surface = BTreeMap::new();
     for face in &graph.faces {
-        *faces_by_surface
-            .entry(face.surface.kind_name())
-            .or_insert(0) += 1;
+        *faces_by_surface.entry(face.surface.kind_name()).or_insert(0) += 1;
     }
     let mut edges_by_convexity = BTreeMap::new();
     for edge in &graph.edges {
@@ -53,39 +51,16 @@ pub fn render(file: &str, solids: &[SolidSummary]) -> String {
     let faces: usize = solids.iter().map(|s| s.faces).sum();
     writeln!(out, "{file}: {} solid(s), {faces} faces", solids.len()).unwrap();
     for (i, s) in solids.iter().enumerate() {
-        let size: Vec<String> = (0..3)
-            .map(|k| format!("{:.2}", s.bbox_max[k] - s.bbox_min[k]))
-            .collect();
-        let by_kind: Vec<String> = s
-            .faces_by_surface
-            .iter()
-            .map(|(k, n)| format!("{k} {n}"))
-            .collect();
+        let size: Vec<String> = (0..3).map(|k| format!("{:.2}", s.bbox_max[k] - s.bbox_min[k])).collect();
+        let by_kind: Vec<String> = s.faces_by_surface.iter().map(|(k, n)| format!("{k} {n}")).collect();
         let by_convexity: Vec<String> = Convexity::ALL
             .iter()
-            .filter_map(|c| {
-                s.edges_by_convexity
-                    .get(c.name())
-                    .map(|n| format!("{} {n}", c.name()))
-            })
+            .filter_map(|c| s.edges_by_convexity.get(c.name()).map(|n| format!("{} {n}", c.name())))
             .collect();
-        writeln!(
-            out,
-            "solid {}: {} faces, {} edges, {} vertices",
-            i + 1,
-            s.faces,
-            s.edges,
-            s.vertices
-        )
-        .unwrap();
+        writeln!(out, "solid {}: {} faces, {} edges, {} vertices", i + 1, s.faces, s.edges, s.vertices).unwrap();
         writeln!(out, "  volume      {:.3} mm3", s.volume).unwrap();
         writeln!(out, "  area        {:.3} mm2", s.area).unwrap();
-        writeln!(
-            out,
-            "  wall        {:.3} mm (2V/A estimate)",
-            s.thickness_estimate
-        )
-        .unwrap();
+        writeln!(out, "  wall        {:.3} mm (2V/A estimate)", s.thickness_estimate).unwrap();
         writeln!(
             out,
             "  bbox        [{:.2}, {:.2}, {:.2}] .. [{:.2}, {:.2}, {:.2}] ({} mm)",

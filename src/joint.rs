@@ -64,16 +64,9 @@ pub enum Verdict {
 
 /// Whether most of the points `step` past the edge's samples lie in the material: an open joint, not the rim.
 /// The points are first moved `to_mid` along the patch normal to the middle of the wall (a patch on a skin).
-pub fn is_open(
-    probe: &EdgeProbe,
-    step: f64,
-    to_mid: f64,
-    contains: impl Fn(DVec3) -> bool,
-) -> bool {
+pub fn is_open(probe: &EdgeProbe, step: f64, to_mid: f64, contains: impl Fn(DVec3) -> bool) -> bool {
     let beyond = |k: usize| probe.points[k] + probe.outward[k] * step + probe.normals[k] * to_mid;
-    let inside = (0..probe.points.len())
-        .filter(|&k| contains(beyond(k)))
-        .count();
+    let inside = (0..probe.points.len()).filter(|&k| contains(beyond(k))).count();
     2 * inside > probe.points.len()
 }
 
@@ -95,11 +88,7 @@ pub fn decide(
     // Each sample votes for the patch of its best meeting; ties go to the lowest patch.
     let mut votes: BTreeMap<usize, usize> = BTreeMap::new();
     for hits in &probe.hits {
-        if let Some(best) = hits
-            .iter()
-            .filter(usable)
-            .min_by(|a, b| score(a).total_cmp(&score(b)))
-        {
+        if let Some(best) = hits.iter().filter(usable).min_by(|a, b| score(a).total_cmp(&score(b))) {
             *votes.entry(patch_of[best.face]).or_default() += 1;
         }
     }
@@ -125,33 +114,19 @@ pub fn decide(
             Some(best.distance + overshoot)
         })
         .collect();
-    let kind = if 2 * on_face > met {
-        JointKind::T
-    } else {
-        JointKind::L
-    };
-    Verdict::Extend(Extension {
-        kind,
-        partner,
-        lengths: fill_gaps(&reached),
-    })
+    let kind = if 2 * on_face > met { JointKind::T } else { JointKind::L };
+    Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached) })
 }
 
 /// Missing values linearly interpolated between their known neighbours, held constant past the ends.
 fn fill_gaps(values: &[Option<f64>]) -> Vec<f64> {
-    let known: Vec<(usize, f64)> = values
-        .iter()
-        .enumerate()
-        .filter_map(|(i, v)| v.map(|v| (i, v)))
-        .collect();
+    let known: Vec<(usize, f64)> = values.iter().enumerate().filter_map(|(i, v)| v.map(|v| (i, v))).collect();
     (0..values.len())
         .map(|i| {
             let before = known.iter().rev().find(|(j, _)| *j <= i);
             let after = known.iter().find(|(j, _)| *j >= i);
             match (before, after) {
-                (Some(&(a, va)), Some(&(b, vb))) if b > a => {
-                    va + (vb - va) * (i - a) as f64 / (b - a) as f64
-                }
+                (Some(&(a, va)), Some(&(b, vb))) if b > a => va + (vb - va) * (i - a) as f64 / (b - a) as f64,
                 (Some(&(_, v)), _) | (None, Some(&(_, v))) => v,
                 (None, None) => unreachable!("decide only fills edges with at least one meeting"),
             }
@@ -166,20 +141,11 @@ mod tests {
 
     fn probe(hits: Vec<Vec<Hit>>) -> EdgeProbe {
         let n = hits.len();
-        EdgeProbe {
-            points: vec![DVec3::ZERO; n],
-            normals: vec![DVec3::X; n],
-            outward: vec![-DVec3::Z; n],
-            hits,
-        }
+        EdgeProbe { points: vec![DVec3::ZERO; n], normals: vec![DVec3::X; n], outward: vec![-DVec3::Z; n], hits }
     }
 
     fn hit(face: usize, distance: f64, gap: f64) -> Hit {
-        Hit {
-            face,
-            distance,
-            gap,
-        }
+        Hit { face, distance, gap }
     }
 
     // Faces 0, 1 belong to patch 0 (the base), face 2 to patch 1 (the rib), face 3 to patch 2 (a far wall).
@@ -189,18 +155,11 @@ mod tests {
     #[test]
     fn an_edge_whose_outside_is_outside_the_solid_is_rim() {
         let mut p = probe(vec![vec![hit(0, 1.0, 0.0)]; 3]);
-        p.points = vec![
-            DVec3::new(0.0, 0.0, 0.0),
-            DVec3::new(1.0, 0.0, 0.0),
-            DVec3::new(2.0, 0.0, 0.0),
-        ];
+        p.points = vec![DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0), DVec3::new(2.0, 0.0, 0.0)];
         // Material only below z = -0.5 at x >= 1.5: one sample of three.
         let contains = |q: DVec3| q.z < -0.4 && q.x >= 1.5;
         assert!(!is_open(&p, 0.5, 0.0, contains));
-        assert_eq!(
-            decide(1, false, &p, &PATCH_OF, &THICKNESS, 3.0),
-            Verdict::Rim
-        );
+        assert_eq!(decide(1, false, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Rim);
         assert!(is_open(&p, 0.5, 0.0, |q: DVec3| q.z < -0.4 && q.x >= 0.5));
     }
 
@@ -212,10 +171,7 @@ mod tests {
         p.normals = vec![DVec3::Z; 3];
         p.outward = vec![DVec3::X; 3];
         let plate = |q: DVec3| q.z < 0.0 && q.z > -2.0 && q.x < 5.0;
-        assert!(
-            !is_open(&p, 0.5, 0.0, plate),
-            "on the skin the test point is on the boundary"
-        );
+        assert!(!is_open(&p, 0.5, 0.0, plate), "on the skin the test point is on the boundary");
         assert!(is_open(&p, 0.5, -1.0, plate));
         let short = |q: DVec3| plate(q) && q.x < 4.2;
         assert!(!is_open(&p, 0.5, -1.0, short), "the rim stays the rim");
@@ -223,14 +179,8 @@ mod tests {
 
     #[test]
     fn a_rib_edge_meeting_the_base_face_is_a_t_joint_with_overshoot() {
-        let p = probe(vec![
-            vec![hit(0, 1.0, 0.0)],
-            vec![hit(1, 1.0, 0.0)],
-            vec![hit(1, 1.0, 0.0), hit(3, 2.0, 0.0)],
-        ]);
-        let Verdict::Extend(e) = decide(1, true, &p, &PATCH_OF, &THICKNESS, 3.0) else {
-            panic!()
-        };
+        let p = probe(vec![vec![hit(0, 1.0, 0.0)], vec![hit(1, 1.0, 0.0)], vec![hit(1, 1.0, 0.0), hit(3, 2.0, 0.0)]]);
+        let Verdict::Extend(e) = decide(1, true, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
         assert_eq!(e.kind, JointKind::T);
         assert_eq!(e.partner, 0);
         assert_eq!(e.lengths, vec![1.5; 3]);
@@ -239,9 +189,7 @@ mod tests {
     #[test]
     fn meeting_the_support_past_the_boundary_is_an_l_joint() {
         let p = probe(vec![vec![hit(2, 0.5, 0.5)], vec![hit(2, 0.7, 0.5)]]);
-        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0) else {
-            panic!()
-        };
+        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
         assert_eq!(e.kind, JointKind::L);
         assert_eq!(e.partner, 1);
         assert_eq!(e.lengths, vec![0.75, 0.95]);
@@ -249,14 +197,8 @@ mod tests {
 
     #[test]
     fn own_patch_and_out_of_reach_meetings_do_not_count() {
-        let p = probe(vec![
-            vec![hit(1, 0.5, 0.0), hit(3, 3.5, 0.0)],
-            vec![hit(3, 1.0, 4.0)],
-        ]);
-        assert_eq!(
-            decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0),
-            Verdict::Unresolved
-        );
+        let p = probe(vec![vec![hit(1, 0.5, 0.0), hit(3, 3.5, 0.0)], vec![hit(3, 1.0, 4.0)]]);
+        assert_eq!(decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Unresolved);
     }
 
     #[test]
@@ -268,9 +210,7 @@ mod tests {
             vec![hit(2, 3.0, 0.0)],
             vec![],
         ]);
-        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0) else {
-            panic!()
-        };
+        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
         assert_eq!(e.partner, 1);
         // Sample 2's best meeting is patch 2's support (0.5 + gap 2 = 2.5 > 2.0): patch 1 there too.
         assert_eq!(e.lengths, vec![1.25, 1.75, 2.25, 3.25, 3.25]);
@@ -278,9 +218,6 @@ mod tests {
 
     #[test]
     fn gaps_fill_by_interpolation_and_holding() {
-        assert_eq!(
-            fill_gaps(&[None, Some(1.0), None, Some(3.0), None]),
-            vec![1.0, 1.0, 2.0, 3.0, 3.0]
-        );
+        assert_eq!(fill_gaps(&[None, Some(1.0), None, Some(3.0), None]), vec![1.0, 1.0, 2.0, 3.0, 3.0]);
     }
 }

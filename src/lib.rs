@@ -6,6 +6,7 @@ pub mod cli;
 pub mod error;
 pub mod exit;
 pub mod face_graph;
+pub mod features;
 pub mod geom;
 pub mod inspect;
 pub mod joint;

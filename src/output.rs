@@ -20,10 +20,7 @@ impl Pending {
             _ => PathBuf::from("."),
         };
         if !dir.is_dir() {
-            return Err(Error::output(
-                target,
-                format!("directory {} does not exist", dir.display()),
-            ));
+            return Err(Error::output(target, format!("directory {} does not exist", dir.display())));
         }
         let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
             (Ok(a), Ok(b)) => a == b,
@@ -33,21 +30,11 @@ impl Pending {
             return Err(Error::output(target, "is a directory"));
         }
         if same(target, input) {
-            return Err(Error::output(
-                target,
-                "is the input file; midsurf never overwrites its input",
-            ));
+            return Err(Error::output(target, "is the input file; midsurf never overwrites its input"));
         }
-        let name = target
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
+        let name = target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
         let temp = dir.join(format!(".{name}.midsurf-{}.tmp", std::process::id()));
-        Ok(Pending {
-            temp,
-            target: target.to_path_buf(),
-            committed: false,
-        })
+        Ok(Pending { temp, target: target.to_path_buf(), committed: false })
     }
 
     pub fn write(&self, bytes: &[u8]) -> Result<(), Error> {
@@ -55,8 +42,7 @@ impl Pending {
     }
 
     pub fn commit(mut self) -> Result<(), Error> {
-        std::fs::rename(&self.temp, &self.target)
-            .map_err(|e| Error::output(&self.target, e.to_string()))?;
+        std::fs::rename(&self.temp, &self.target).map_err(|e| Error::output(&self.target, e.to_string()))?;
         self.committed = true;
         Ok(())
     }

@@ -5,6 +5,7 @@ use std::fmt::Write;
 use serde::Serialize;
 
 use crate::face_graph::{FaceGraph, Surface};
+use crate::features::{self, Feature, LimitArgs, Limits};
 use crate::pairing::estimate::{estimate_t_max, TMaxEstimate};
 use crate::pairing::{self, FaceRole, Pairing};
 use crate::tolerance::Tolerances;
@@ -14,6 +15,7 @@ use crate::tolerance::Tolerances;
 pub struct PairingParams {
     pub t_max: Option<f64>,
     pub draft_max_deg: f64,
+    pub limits: LimitArgs,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -22,6 +24,10 @@ pub struct SolidPairing {
     pub t_max_source: String,
     pub estimate: TMaxEstimate,
     pub tolerances: Tolerances,
+    /// Size limits of the small features (user values or defaults from t_max).
+    pub limits: Limits,
+    /// The small features suppressed: their faces did not pair.
+    pub features: Vec<Feature>,
     pub pairing: Pairing,
     /// Share of the solid's area on paired faces.
     pub paired_share: f64,
@@ -30,7 +36,23 @@ pub struct SolidPairing {
     pub paired_skin_share: f64,
 }
 
-pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -> SolidPairing {
+impl SolidPairing {
+    /// Widest uncovered band a clipped mid-patch keeps (see `Tolerances::clip_narrow`): under a crossing wall
+    /// the band also spans the suppressed fillets at the wall's root, up to twice the largest radius.
+    pub fn clip_narrow(&self) -> f64 {
+        let fillet = self
+            .features
+            .iter()
+            .filter(|f| f.kind == features::FeatureKind::Fillet)
+            .map(|f| f.size)
+            .fold(0.0, f64::max);
+        self.tolerances.clip_narrow + 2.0 * fillet
+    }
+}
+
+/// Pairs one solid: a first pairing with every face gives the roles the feature recognition needs (a fillet
+/// is a round that did not pair), then the features' faces are left out and the solid is paired again.
+pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
     let draft_max = params.draft_max_deg.to_radians();
     let estimate = estimate_t_max(graph, draft_max);
     let (t_max, t_max_source) = match params.t_max {
@@ -38,14 +60,16 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -
         None => (estimate.t_max, format!("estimated: {}", estimate.method)),
     };
     let tolerances = Tolerances::new(graph.bbox.diagonal(), t_max, draft_max);
-    let pairing = pairing::detect(graph, &tolerances, pairable);
+    let limits = params.limits.resolve(t_max);
+    let first = pairing::detect(graph, &tolerances, &vec![true; graph.faces.len()]);
+    let features = features::recognise(graph, &first.roles, &limits, tolerances.coaxial);
+    let pairing = if features.is_empty() {
+        first
+    } else {
+        pairing::detect(graph, &tolerances, &features::pairable(graph.faces.len(), &features))
+    };
     let area_with = |keep: &dyn Fn(&FaceRole) -> bool| -> f64 {
-        graph
-            .faces
-            .iter()
-            .filter(|f| keep(&pairing.roles[f.id]))
-            .map(|f| f.area)
-            .sum()
+        graph.faces.iter().filter(|f| keep(&pairing.roles[f.id])).map(|f| f.area).sum()
     };
     let paired = area_with(&|r| matches!(r, FaceRole::Pair { .. }));
     let skins: f64 = graph
@@ -62,22 +86,17 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams, pairable: &[bool]) -
         t_max_source,
         estimate,
         tolerances,
-        paired_share: if graph.area > 0.0 {
-            paired / graph.area
-        } else {
-            0.0
-        },
+        limits,
+        features,
+        paired_share: if graph.area > 0.0 { paired / graph.area } else { 0.0 },
         paired_skin_share: if skins > 0.0 { paired / skins } else { 0.0 },
         pairing,
     }
 }
 
-/// Pairs every solid of a part, all faces pairable (no suppression yet).
+/// Pairs every solid of a part.
 pub fn pair_part(part: &crate::part::Part, params: PairingParams) -> Vec<SolidPairing> {
-    part.solids
-        .iter()
-        .map(|s| pair_solid(&s.graph, params, &vec![true; s.graph.faces.len()]))
-        .collect()
+    part.solids.iter().map(|s| pair_solid(&s.graph, params)).collect()
 }
 
 /// A fillet or round: a cylinder, torus or sphere whose (minor) radius is within the wall thickness.
@@ -147,18 +166,16 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
         counts.pair, counts.thickness, counts.connecting, counts.suppressed, counts.unpaired
     )
     .unwrap();
+    for f in &sp.features {
+        let (kind, what) = (f.kind.name(), f.kind.size_name());
+        writeln!(out, "  suppressed {kind} faces {} ({what} {:.2} mm)", faces_list(&f.faces), f.size).unwrap();
+    }
     for (f, role) in p.roles.iter().enumerate() {
         let Some(why) = role.unpaired_reason() else {
             continue;
         };
         let face = &graph.faces[f];
-        writeln!(
-            out,
-            "  unpaired face {f} ({}, {:.2} mm2): {why}",
-            face.surface.kind_name(),
-            face.area
-        )
-        .unwrap();
+        writeln!(out, "  unpaired face {f} ({}, {:.2} mm2): {why}", face.surface.kind_name(), face.area).unwrap();
     }
     writeln!(
         out,

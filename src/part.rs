@@ -29,10 +29,7 @@ pub struct MeshRequest {
 /// Starts the sidecar for work on `path`, so that a broken install is reported against the file at hand.
 pub fn start_sidecar(path: &Path) -> Result<Sidecar, Error> {
     check_input(path)?;
-    Sidecar::start().map_err(|error| Error::Sidecar {
-        path: path.to_path_buf(),
-        error,
-    })
+    Sidecar::start().map_err(|error| Error::Sidecar { path: path.to_path_buf(), error })
 }
 
 /// Problems we can see without the kernel, with a message a user can act on.
@@ -57,51 +54,27 @@ const INPUT_CODES: [&str; 4] = ["not_found", "not_a_file", "read_failed", "no_so
 fn classify(path: &Path, error: SidecarError) -> Error {
     match error.code() {
         Some(code) if INPUT_CODES.contains(&code) => Error::input(path, error.to_string()),
-        _ => Error::Sidecar {
-            path: path.to_path_buf(),
-            error,
-        },
+        _ => Error::Sidecar { path: path.to_path_buf(), error },
     }
 }
 
 pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Part, Error> {
     check_input(path)?;
     // The sidecar gets an absolute path so that its working directory never matters.
-    let absolute =
-        std::path::absolute(path).map_err(|e| Error::input(path, format!("bad path: {e}")))?;
-    let text = absolute
-        .to_str()
-        .ok_or_else(|| Error::input(path, "path is not valid UTF-8"))?;
-    let loaded: Loaded = sidecar
-        .call(&Request::LoadStep {
-            path: text.to_string(),
-        })
-        .map_err(|e| classify(path, e))?;
+    let absolute = std::path::absolute(path).map_err(|e| Error::input(path, format!("bad path: {e}")))?;
+    let text = absolute.to_str().ok_or_else(|| Error::input(path, "path is not valid UTF-8"))?;
+    let loaded: Loaded = sidecar.call(&Request::LoadStep { path: text.to_string() }).map_err(|e| classify(path, e))?;
     let mut solids = Vec::with_capacity(loaded.solids.len());
     for solid in loaded.solids {
-        let mesh_tolerance = mesh
-            .tolerance
-            .unwrap_or_else(|| crate::tolerance::mesh_tolerance(solid.volume, solid.area));
-        let request = Request::Describe {
-            handle: solid.handle,
-            mesh: mesh.mesh,
-            mesh_tolerance,
-        };
+        let mesh_tolerance =
+            mesh.tolerance.unwrap_or_else(|| crate::tolerance::mesh_tolerance(solid.volume, solid.area));
+        let request = Request::Describe { handle: solid.handle, mesh: mesh.mesh, mesh_tolerance };
         let graph: FaceGraph = sidecar.call(&request).map_err(|e| classify(path, e))?;
         let problems = graph.validate();
         if !problems.is_empty() {
-            return Err(Error::input(
-                path,
-                format!("inconsistent face graph: {}", problems.join("; ")),
-            ));
+            return Err(Error::input(path, format!("inconsistent face graph: {}", problems.join("; "))));
         }
-        solids.push(Solid {
-            handle: solid.handle,
-            graph,
-        });
+        solids.push(Solid { handle: solid.handle, graph });
     }
-    Ok(Part {
-        path: path.to_path_buf(),
-        solids,
-    })
+    Ok(Part { path: path.to_path_buf(), solids })
 }

@@ -56,6 +56,10 @@ pub struct SolidReport {
     pub t_max_source: String,
     pub t_max_estimate: TMaxEstimate,
     pub tolerances: Tolerances,
+    /// Size limits of the small features (user values or defaults from t_max).
+    pub feature_limits: crate::features::Limits,
+    /// Small features suppressed: kind, faces, size (fillet radius, hole diameter, boss box diagonal).
+    pub suppressed: Vec<crate::features::Feature>,
     pub groups: Vec<PairGroup>,
     pub roles: RoleCounts,
     pub unpaired: Vec<Unpaired>,
@@ -151,7 +155,8 @@ pub struct ResultSummary {
 #[derive(Debug, Clone, Serialize)]
 pub struct Warning {
     /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict,
-    /// thickness_step, partial_overlap, joint_failed, stitch_failed, open_edges.
+    /// thickness_step, partial_overlap, joint_failed, stitch_failed, open_edges,
+    /// feature_not_suppressed.
     pub code: &'static str,
     pub message: String,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -190,20 +195,13 @@ pub fn legend(thicknesses: &[f64]) -> Vec<LegendEntry> {
     bands
         .into_iter()
         .enumerate()
-        .map(|(i, thickness)| LegendEntry {
-            thickness,
-            color: PALETTE.get(i).copied().unwrap_or([0.5, 0.5, 0.5]),
-        })
+        .map(|(i, thickness)| LegendEntry { thickness, color: PALETTE.get(i).copied().unwrap_or([0.5, 0.5, 0.5]) })
         .collect()
 }
 
 pub fn band_color(legend: &[LegendEntry], t: f64) -> [f64; 3] {
     let t = round(t, 3);
-    legend
-        .iter()
-        .find(|e| e.thickness == t)
-        .map(|e| e.color)
-        .unwrap_or([0.5, 0.5, 0.5])
+    legend.iter().find(|e| e.thickness == t).map(|e| e.color).unwrap_or([0.5, 0.5, 0.5])
 }
 
 /// The patches as CSV, one row per patch in id order: `patch,solid,kind,thickness,area,faces,source_faces`
@@ -238,18 +236,12 @@ mod tests {
             group: 0,
             kind,
             source_faces: sources,
-            thickness: Thickness {
-                mean: t,
-                min: t,
-                max: t,
-            },
+            thickness: Thickness { mean: t, min: t, max: t },
             area: 12.345,
             faces: 2,
         };
-        let csv = patches_csv(&[
-            patch(1, PairKind::Parallel, 2.0, vec![3, 7]),
-            patch(2, PairKind::Draft, 1.25, vec![0]),
-        ]);
+        let csv =
+            patches_csv(&[patch(1, PairKind::Parallel, 2.0, vec![3, 7]), patch(2, PairKind::Draft, 1.25, vec![0])]);
         assert_eq!(
             csv,
             "patch,solid,kind,thickness,area,faces,source_faces\n1,1,parallel,2.000,12.35,2,3 7\n2,1,draft,1.250,12.35,2,0\n"

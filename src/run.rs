@@ -39,28 +39,14 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let started = Instant::now();
     let mut timings = Timings::default();
     let step_out = Pending::new(&args.output, &args.input)?;
-    let optional = |path: &Option<PathBuf>| {
-        path.as_deref()
-            .map(|p| Pending::new(p, &args.input))
-            .transpose()
-    };
+    let optional = |path: &Option<PathBuf>| path.as_deref().map(|p| Pending::new(p, &args.input)).transpose();
     let (report_out, summary_out) = (optional(&args.report)?, optional(&args.summary)?);
     let (csv_out, preview_out) = (optional(&args.csv)?, optional(&args.preview)?);
     let mut sidecar = part::start_sidecar(&args.input)?;
-    let kernel = |e| Error::Sidecar {
-        path: args.input.clone(),
-        error: e,
-    };
+    let kernel = |e| Error::Sidecar { path: args.input.clone(), error: e };
 
     let t = Instant::now();
-    let part = part::load(
-        &mut sidecar,
-        &args.input,
-        MeshRequest {
-            mesh: true,
-            tolerance: None,
-        },
-    )?;
+    let part = part::load(&mut sidecar, &args.input, MeshRequest { mesh: true, tolerance: None })?;
     timings.load = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -72,7 +58,10 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
         warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
-        let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position);
+        let mut fill: Vec<usize> = sp.features.iter().flat_map(|f| f.fill.iter().copied()).collect();
+        fill.sort_unstable();
+        fill.dedup();
+        let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &fill);
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
             let request = Request::MakePatch {
@@ -82,16 +71,27 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
                 clip: Some(Clip {
                     partners: plan.partners.clone(),
                     fuzzy: sp.tolerances.fuse,
-                    narrow: sp.tolerances.clip_narrow,
+                    narrow: sp.clip_narrow(),
                 }),
                 reverse: plan.reverse,
+                fill: plan.fill.clone(),
             };
             match sidecar.call::<MadePatch>(&request) {
-                Ok(patch) => made.push(Made {
-                    solid: i + 1,
-                    plan,
-                    handle: patch.handle,
-                }),
+                Ok(patch) => {
+                    if patch.filled != plan.fill_loops {
+                        // The kernel can skip a loop silently: say which feature may still show.
+                        warnings.push(Warning {
+                            code: "feature_not_suppressed",
+                            message: format!(
+                                "group {} faces {:?}: {} of {} loops of suppressed features filled",
+                                plan.group, plan.faces, patch.filled, plan.fill_loops
+                            ),
+                            solid: Some(i + 1),
+                            faces: plan.faces.clone(),
+                        });
+                    }
+                    made.push(Made { solid: i + 1, plan, handle: patch.handle })
+                }
                 Err(e) if e.code().is_some() => warnings.push(Warning {
                     code: "patch_failed",
                     message: format!("group {} faces {:?}: {e}", plan.group, plan.faces),
@@ -105,17 +105,10 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     timings.patches = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let fuzzy = pairings
-        .iter()
-        .map(|p| p.tolerances.fuse)
-        .fold(f64::INFINITY, f64::min);
+    let fuzzy = pairings.iter().map(|p| p.tolerances.fuse).fold(f64::INFINITY, f64::min);
     let fuzzy = if fuzzy.is_finite() { fuzzy } else { 0.0 };
     let fused: Fused = sidecar
-        .call(&Request::Fuse {
-            patches: made.iter().map(|m| m.handle).collect(),
-            fuzzy,
-            split_internal: false,
-        })
+        .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy, split_internal: false })
         .map_err(kernel)?;
     let thickness: Vec<f64> = made.iter().map(|m| m.plan.thickness.mean).collect();
     let infos: Vec<PatchInfo> = made
@@ -123,11 +116,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         .map(|m| {
             let tolerances = &pairings[m.solid - 1].tolerances;
             // On a skin the patch a joint grows to may lie up to half a thickness farther than its middle.
-            let skin = if args.position == Position::Mid {
-                0.0
-            } else {
-                0.5 * tolerances.t_max
-            };
+            let skin = if args.position == Position::Mid { 0.0 } else { 0.5 * tolerances.t_max };
             PatchInfo {
                 thickness: m.plan.thickness.mean,
                 to_mid: m.plan.to_mid,
@@ -141,36 +130,28 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     timings.trim = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let meshes: Vec<SolidMesh> = part
-        .solids
-        .iter()
-        .map(|s| SolidMesh::new(&s.graph).expect("run describes every solid with meshes"))
-        .collect();
-    let (fused, keep, joints, free) =
-        match stitch(&mut sidecar, &fused, &keep, &infos, &meshes, fuzzy) {
-            Ok(s) => {
-                branches.extend(s.branches);
-                (s.fused, s.keep, s.joints, Some(s.free))
-            }
-            Err(e) if e.code().is_some() => {
-                warnings.push(Warning {
-                    code: "stitch_failed",
-                    message: format!("the patches are written unstitched: {e}"),
-                    solid: None,
-                    faces: Vec::new(),
-                });
-                (fused, keep, Vec::new(), None)
-            }
-            Err(e) => return Err(kernel(e)),
-        };
+    let meshes: Vec<SolidMesh> =
+        part.solids.iter().map(|s| SolidMesh::new(&s.graph).expect("run describes every solid with meshes")).collect();
+    let (fused, keep, joints, free) = match stitch(&mut sidecar, &fused, &keep, &infos, &meshes, fuzzy) {
+        Ok(s) => {
+            branches.extend(s.branches);
+            (s.fused, s.keep, s.joints, Some(s.free))
+        }
+        Err(e) if e.code().is_some() => {
+            warnings.push(Warning {
+                code: "stitch_failed",
+                message: format!("the patches are written unstitched: {e}"),
+                solid: None,
+                faces: Vec::new(),
+            });
+            (fused, keep, Vec::new(), None)
+        }
+        Err(e) => return Err(kernel(e)),
+    };
     warnings.extend(joint_warnings(&joints));
     let sets = connected_sets(&fused, &keep);
-    let shells: Shells = sidecar
-        .call(&Request::MakeShells {
-            handle: fused.handle,
-            shells: sets.clone(),
-        })
-        .map_err(kernel)?;
+    let shells: Shells =
+        sidecar.call(&Request::MakeShells { handle: fused.handle, shells: sets.clone() }).map_err(kernel)?;
     timings.stitch = t.elapsed().as_secs_f64();
 
     let legend = report::legend(&thickness);
@@ -178,8 +159,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     if made.is_empty() {
         warnings.push(Warning {
             code: "no_pairs",
-            message: "no face pairs found: the output is empty; check --t-max and --draft-max"
-                .to_string(),
+            message: "no face pairs found: the output is empty; check --t-max and --draft-max".to_string(),
             solid: None,
             faces: Vec::new(),
         });
@@ -202,26 +182,17 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         })
         .collect();
     let utf8 = |p: &Pending| {
-        p.temp
-            .to_str()
-            .map(str::to_string)
-            .ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
+        p.temp.to_str().map(str::to_string).ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
     };
     let preview = preview_out.as_ref().map(utf8).transpose()?;
     sidecar
-        .call::<Written>(&Request::WriteStep {
-            path: utf8(&step_out)?,
-            handle: shells.handle,
-            faces,
-            preview,
-        })
+        .call::<Written>(&Request::WriteStep { path: utf8(&step_out)?, handle: shells.handle, faces, preview })
         .map_err(kernel)?;
     sidecar.shutdown();
     timings.write = t.elapsed().as_secs_f64();
     timings.total = started.elapsed().as_secs_f64();
 
-    let topology =
-        crate::topology::summarise(&fused, &keep, &shells, sets.len(), &patches, &joints, free);
+    let topology = crate::topology::summarise(&fused, &keep, &shells, sets.len(), &patches, &joints, free);
     let report = Report {
         report_version: REPORT_VERSION,
         midsurf_version: env!("CARGO_PKG_VERSION"),
@@ -255,10 +226,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         timings_s: args.timings.then_some(timings),
     };
     if let Some(pending) = &report_out {
-        pending.write(
-            (serde_json::to_string_pretty(&report).expect("reports always serialise") + "\n")
-                .as_bytes(),
-        )?;
+        pending.write((serde_json::to_string_pretty(&report).expect("reports always serialise") + "\n").as_bytes())?;
     }
     if let Some(pending) = &summary_out {
         pending.write(report.topology.text().as_bytes())?;
@@ -267,18 +235,11 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         pending.write(report::patches_csv(&report.patches).as_bytes())?;
     }
     step_out.commit()?;
-    for pending in [report_out, summary_out, csv_out, preview_out]
-        .into_iter()
-        .flatten()
-    {
+    for pending in [report_out, summary_out, csv_out, preview_out].into_iter().flatten() {
         pending.commit()?;
     }
     eprintln!("{}", summary_line(&args.output, &report));
-    Ok(if report.warnings.is_empty() {
-        Exit::Clean
-    } else {
-        Exit::Warnings
-    })
+    Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })
 }
 
 fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
@@ -342,13 +303,8 @@ fn patch_reports(made: &[Made], fused: &Fused, keep: &[bool]) -> Vec<PatchReport
     made.iter()
         .enumerate()
         .map(|(k, m)| {
-            let pieces: Vec<&crate::sidecar::protocol::FusedFace> = fused
-                .faces
-                .iter()
-                .enumerate()
-                .filter(|(i, f)| keep[*i] && f.patch == k)
-                .map(|(_, f)| f)
-                .collect();
+            let pieces: Vec<&crate::sidecar::protocol::FusedFace> =
+                fused.faces.iter().enumerate().filter(|(i, f)| keep[*i] && f.patch == k).map(|(_, f)| f).collect();
             PatchReport {
                 id: k + 1,
                 solid: m.solid,
@@ -418,6 +374,8 @@ fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidRepo
         t_max_source: sp.t_max_source.clone(),
         t_max_estimate: sp.estimate.clone(),
         tolerances: sp.tolerances,
+        feature_limits: sp.limits,
+        suppressed: sp.features.clone(),
         groups: sp.pairing.groups.clone(),
         roles,
         unpaired,

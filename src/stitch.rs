@@ -9,8 +9,7 @@ use crate::geom::inside::SolidMesh;
 use crate::joint::{self, Verdict};
 use crate::patch::trim::{branch_limit, find_branches, keep_mask, Branch};
 use crate::sidecar::protocol::{
-    CornerRequest, EdgeProbe, EdgeRef, Extended, Fused, GatherPart, Gathered, Probed, Request,
-    StripRequest,
+    CornerRequest, EdgeProbe, EdgeRef, Extended, Fused, GatherPart, Gathered, Probed, Request, StripRequest,
 };
 use crate::sidecar::{Sidecar, SidecarError};
 
@@ -77,44 +76,22 @@ fn probe(
     if free.is_empty() {
         return Ok(Vec::new());
     }
-    let edges = free
-        .iter()
-        .map(|&(edge, face)| EdgeRef { edge, face })
-        .collect();
+    let edges = free.iter().map(|&(edge, face)| EdgeRef { edge, face }).collect();
     let reach = patches.iter().map(|p| p.reach).fold(0.0, f64::max);
-    let probed: Probed = sidecar.call(&Request::ProbeEdges {
-        handle: fused.handle,
-        edges,
-        targets,
-        samples: joint::SAMPLES,
-        reach,
-    })?;
+    let probed: Probed =
+        sidecar.call(&Request::ProbeEdges { handle: fused.handle, edges, targets, samples: joint::SAMPLES, reach })?;
     Ok(probed.edges)
 }
 
 /// How far a branch may hang past each patch.
 pub fn branch_limits(patches: &[PatchInfo]) -> Vec<f64> {
-    patches
-        .iter()
-        .map(|p| branch_limit(p.thickness, p.to_mid))
-        .collect()
+    patches.iter().map(|p| branch_limit(p.thickness, p.to_mid)).collect()
 }
 
 /// Whether the free edge of `face` lies in the material of its patch's solid.
-fn open(
-    fused: &Fused,
-    face: usize,
-    probe: &EdgeProbe,
-    patches: &[PatchInfo],
-    solids: &[SolidMesh],
-) -> bool {
+fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], solids: &[SolidMesh]) -> bool {
     let patch = &patches[fused.faces[face].patch];
-    joint::is_open(
-        probe,
-        joint::PROBE_STEP * patch.thickness,
-        patch.to_mid,
-        |q| solids[patch.solid].contains(q),
-    )
+    joint::is_open(probe, joint::PROBE_STEP * patch.thickness, patch.to_mid, |q| solids[patch.solid].contains(q))
 }
 
 /// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again (also without any
@@ -148,11 +125,7 @@ pub fn stitch(
                 ids.sort_unstable();
                 planned.push((
                     patch,
-                    StripRequest {
-                        edge,
-                        face,
-                        lengths: x.lengths,
-                    },
+                    StripRequest { edge, face, lengths: x.lengths },
                     (ids, x.kind.name(), "extended"),
                     p,
                 ));
@@ -192,19 +165,12 @@ pub fn stitch(
     let mut handles = Vec::new();
     for k in 0..patches.len() {
         let pieces: Vec<usize> = kept.iter().copied().filter(|&f| patch_of[f] == k).collect();
-        let own: Vec<usize> = strips
-            .iter()
-            .filter(|(p, _)| *p == k)
-            .map(|&(_, j)| j)
-            .collect();
+        let own: Vec<usize> = strips.iter().filter(|(p, _)| *p == k).map(|&(_, j)| j).collect();
         let mut parts = Vec::new();
         // Only a patch with strips has faces to merge.
         let unify = (!own.is_empty()).then_some(fuzzy);
         if !pieces.is_empty() {
-            parts.push(GatherPart {
-                handle: fused.handle,
-                faces: pieces,
-            });
+            parts.push(GatherPart { handle: fused.handle, faces: pieces });
         }
         if let (Some(handle), false) = (extended_handle, own.is_empty()) {
             parts.push(GatherPart { handle, faces: own });
@@ -216,47 +182,28 @@ pub fn stitch(
         order.push(k);
         handles.push(gathered.handle);
     }
-    let mut again: Fused = sidecar.call(&Request::Fuse {
-        patches: handles,
-        fuzzy,
-        split_internal: true,
-    })?;
+    let mut again: Fused = sidecar.call(&Request::Fuse { patches: handles, fuzzy, split_internal: true })?;
     for face in &mut again.faces {
         face.patch = order[face.patch];
     }
     let branches = find_branches(&again, &branch_limits(patches));
     let keep = keep_mask(again.faces.len(), &branches);
     let free = classify_free(sidecar, &again, &keep, patches, solids)?;
-    Ok(Stitched {
-        fused: again,
-        keep,
-        branches,
-        joints,
-        free,
-    })
+    Ok(Stitched { fused: again, keep, branches, joints, free })
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
 /// and end both growing into the walls they meet): a quad v, a, c, b fills it, where a and b are the strips'
 /// far corners over v and c = a + b - v. Edges continuing each other (outward directions within 10 degrees)
 /// need none; at a reflex corner the strips overlap instead.
-fn corners(
-    planned: &[(usize, StripRequest, JointKey, &EdgeProbe)],
-    fuzzy: f64,
-) -> Vec<(usize, CornerRequest)> {
+fn corners(planned: &[(usize, StripRequest, JointKey, &EdgeProbe)], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
     let same_point = (fuzzy * 10.0).max(1e-9);
     let continuing = 10f64.to_radians().cos();
     // (point, direction along the edge into that end, outward, length, normal) at both ends of a strip.
     let ends = |s: &StripRequest, p: &EdgeProbe| {
         let n = p.points.len();
         [
-            (
-                p.points[0],
-                (p.points[0] - p.points[1]).normalize_or_zero(),
-                p.outward[0],
-                s.lengths[0],
-                p.normals[0],
-            ),
+            (p.points[0], (p.points[0] - p.points[1]).normalize_or_zero(), p.outward[0], s.lengths[0], p.normals[0]),
             (
                 p.points[n - 1],
                 (p.points[n - 1] - p.points[n - 2]).normalize_or_zero(),
@@ -268,11 +215,7 @@ fn corners(
     };
     let mut out = Vec::new();
     for (i, (patch, a, _, pa)) in planned.iter().enumerate() {
-        for (b, pb) in planned[i + 1..]
-            .iter()
-            .filter(|(_, b, _, _)| b.face == a.face)
-            .map(|(_, b, _, p)| (b, p))
-        {
+        for (b, pb) in planned[i + 1..].iter().filter(|(_, b, _, _)| b.face == a.face).map(|(_, b, _, p)| (b, p)) {
             for &(va, along_a, out_a, len_a, normal) in &ends(a, pa) {
                 for &(vb, along_b, out_b, len_b, _) in &ends(b, pb) {
                     let convex = out_b.dot(along_a) > 0.0 && out_a.dot(along_b) > 0.0;
@@ -281,13 +224,7 @@ fn corners(
                     }
                     let far_a = va + out_a * len_a;
                     let far_b = va + out_b * len_b;
-                    out.push((
-                        *patch,
-                        CornerRequest {
-                            points: [va, far_a, far_a + far_b - va, far_b],
-                            normal,
-                        },
-                    ));
+                    out.push((*patch, CornerRequest { points: [va, far_a, far_a + far_b - va, far_b], normal }));
                 }
             }
         }

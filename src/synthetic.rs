@@ -18,18 +18,11 @@ pub fn face(surface: Surface, n: usize, eval: impl Fn(f64, f64) -> (DVec3, DVec3
     let at = |i: usize, j: usize| (j * (n + 1) + i) as u32;
     for j in 0..n {
         for i in 0..n {
-            for t in [
-                [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
-                [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
-            ] {
+            for t in [[at(i, j), at(i + 1, j), at(i + 1, j + 1)], [at(i, j), at(i + 1, j + 1), at(i, j + 1)]] {
                 let p = t.map(|k| mesh.vertices[k as usize]);
                 let geometric = (p[1] - p[0]).cross(p[2] - p[0]);
                 let outward = t.iter().map(|&k| mesh.normals[k as usize]).sum::<DVec3>();
-                mesh.triangles.push(if geometric.dot(outward) >= 0.0 {
-                    t
-                } else {
-                    [t[0], t[2], t[1]]
-                });
+                mesh.triangles.push(if geometric.dot(outward) >= 0.0 { t } else { [t[0], t[2], t[1]] });
             }
         }
     }
@@ -41,10 +34,7 @@ pub fn face(surface: Surface, n: usize, eval: impl Fn(f64, f64) -> (DVec3, DVec3
         moment += a * (p[0] + p[1] + p[2]) / 3.0;
     }
     let min = mesh.vertices.iter().fold(DVec3::INFINITY, |m, &p| m.min(p));
-    let max = mesh
-        .vertices
-        .iter()
-        .fold(DVec3::NEG_INFINITY, |m, &p| m.max(p));
+    let max = mesh.vertices.iter().fold(DVec3::NEG_INFINITY, |m, &p| m.max(p));
     let (point, normal) = eval(0.5, 0.5);
     Face {
         id: 0,
@@ -63,77 +53,44 @@ pub fn face(surface: Surface, n: usize, eval: impl Fn(f64, f64) -> (DVec3, DVec3
 /// A planar parallelogram `origin + u * du + v * dv` with outward normal `normal`.
 pub fn rect(origin: DVec3, du: DVec3, dv: DVec3, normal: DVec3) -> Face {
     let normal = normal.normalize();
-    face(Surface::Plane { origin, normal }, 1, |u, v| {
-        (origin + du * u + dv * v, normal)
-    })
+    face(Surface::Plane { origin, normal }, 1, |u, v| (origin + du * u + dv * v, normal))
 }
 
 /// A cylindrical face around the z axis through `center`: radius, angular span [a0, a1], height.
 pub fn cylinder(center: DVec3, radius: f64, span: (f64, f64), height: f64, convex: bool) -> Face {
-    let surface = Surface::Cylinder {
-        origin: center,
-        axis: DVec3::Z,
-        radius,
-        convex,
-    };
+    let surface = Surface::Cylinder { origin: center, axis: DVec3::Z, radius, convex };
     face(surface, 24, |u, v| {
         let a = span.0 + (span.1 - span.0) * u;
         let radial = DVec3::new(a.cos(), a.sin(), 0.0);
-        (
-            center + radial * radius + DVec3::Z * height * v,
-            if convex { radial } else { -radial },
-        )
+        (center + radial * radius + DVec3::Z * height * v, if convex { radial } else { -radial })
     })
 }
 
 /// A sphere patch around `center` (polar angle from `theta` range, full azimuth).
 pub fn sphere(center: DVec3, radius: f64, theta: (f64, f64), convex: bool) -> Face {
-    let surface = Surface::Sphere {
-        center,
-        radius,
-        convex,
-    };
+    let surface = Surface::Sphere { center, radius, convex };
     face(surface, 24, |u, v| {
         let (t, p) = (theta.0 + (theta.1 - theta.0) * v, std::f64::consts::TAU * u);
         let radial = DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
-        (
-            center + radial * radius,
-            if convex { radial } else { -radial },
-        )
+        (center + radial * radius, if convex { radial } else { -radial })
     })
 }
 
 /// A torus patch around the z axis: the outer half of the tube (minor angle -90..90 degrees), full turn.
 pub fn torus(center: DVec3, major: f64, minor: f64, convex: bool) -> Face {
-    let surface = Surface::Torus {
-        center,
-        axis: DVec3::Z,
-        major_radius: major,
-        minor_radius: minor,
-        convex,
-    };
+    let surface = Surface::Torus { center, axis: DVec3::Z, major_radius: major, minor_radius: minor, convex };
     face(surface, 32, |u, v| {
         let (p, t) = (std::f64::consts::TAU * u, std::f64::consts::PI * (v - 0.5));
         let ring = DVec3::new(p.cos(), p.sin(), 0.0);
         let radial = ring * t.cos() + DVec3::Z * t.sin();
-        (
-            center + ring * major + radial * minor,
-            if convex { radial } else { -radial },
-        )
+        (center + ring * major + radial * minor, if convex { radial } else { -radial })
     })
 }
 
 /// A cone around the z axis with apex at `apex`, half angle `half`, between distances s0..s1 from the apex
 /// along the generator, full turn.
 pub fn cone(apex: DVec3, half: f64, s: (f64, f64), convex: bool) -> Face {
-    let surface = Surface::Cone {
-        origin: apex,
-        axis: DVec3::Z,
-        radius: 0.0,
-        half_angle: half,
-        apex,
-        convex,
-    };
+    let surface = Surface::Cone { origin: apex, axis: DVec3::Z, radius: 0.0, half_angle: half, apex, convex };
     face(surface, 32, |u, v| {
         let (p, d) = (std::f64::consts::TAU * u, s.0 + (s.1 - s.0) * v);
         let ring = DVec3::new(p.cos(), p.sin(), 0.0);
@@ -167,18 +124,9 @@ pub fn graph(mut faces: Vec<Face>, adjacent: &[(usize, usize, Convexity)]) -> Fa
         });
     }
     let min = faces.iter().fold(DVec3::INFINITY, |m, f| m.min(f.bbox.min));
-    let max = faces
-        .iter()
-        .fold(DVec3::NEG_INFINITY, |m, f| m.max(f.bbox.max));
+    let max = faces.iter().fold(DVec3::NEG_INFINITY, |m, f| m.max(f.bbox.max));
     let area = faces.iter().map(|f| f.area).sum();
-    FaceGraph {
-        volume: 0.0,
-        area,
-        bbox: Bbox { min, max },
-        vertices: vec![DVec3::ZERO],
-        faces,
-        edges,
-    }
+    FaceGraph { volume: 0.0, area, bbox: Bbox { min, max }, vertices: vec![DVec3::ZERO], faces, edges }
 }
 
 /// A closed box [0,x]x[0,y]x[0,z] as six faces (-x, +x, -y, +y, -z, +z) with its twelve convex edges.

@@ -54,19 +54,10 @@ pub fn summarise(
     joints: &[JointReport],
     free: Option<FreeEdges>,
 ) -> Topology {
-    let nonmanifold_edges = fused
-        .edges
-        .iter()
-        .filter(|e| e.faces.iter().filter(|&&f| keep[f]).count() >= 3)
-        .count();
+    let nonmanifold_edges = fused.edges.iter().filter(|e| e.faces.iter().filter(|&&f| keep[f]).count() >= 3).count();
     let faces = shells.faces.len();
-    let mut joints: Vec<JointReport> = joints
-        .iter()
-        .map(|j| JointReport {
-            length: round(j.length, 2),
-            ..j.clone()
-        })
-        .collect();
+    let mut joints: Vec<JointReport> =
+        joints.iter().map(|j| JointReport { length: round(j.length, 2), ..j.clone() }).collect();
     joints.sort_by(|a, b| (&a.patches, a.kind, a.status).cmp(&(&b.patches, b.kind, b.status)));
     Topology {
         faces,
@@ -100,12 +91,7 @@ impl Topology {
     pub fn text(&self) -> String {
         let mut out = format!(
             "faces {}  edges {}  vertices {}  euler {}  components {}  nonmanifold_edges {}\n",
-            self.faces,
-            self.edges,
-            self.vertices,
-            self.euler,
-            self.components,
-            self.nonmanifold_edges
+            self.faces, self.edges, self.vertices, self.euler, self.components, self.nonmanifold_edges
         );
         match &self.free_edges {
             Some(f) => {
@@ -129,14 +115,8 @@ impl Topology {
         }
         for j in &self.joints {
             let ids: Vec<String> = j.patches.iter().map(usize::to_string).collect();
-            out += &format!(
-                "joint {} {} {} edges={} length={:.2}\n",
-                ids.join("-"),
-                j.kind,
-                j.status,
-                j.edges,
-                j.length
-            );
+            out +=
+                &format!("joint {} {} {} edges={} length={:.2}\n", ids.join("-"), j.kind, j.status, j.edges, j.length);
         }
         out
     }

@@ -12,11 +12,7 @@ fn fails_with_one_line(cmd: &mut assert_cmd::Command, path: &str) -> String {
     let lines: Vec<&str> = out.stderr.lines().collect();
     assert_eq!(lines.len(), 1, "one line: {:?}", out.stderr);
     let prefix = format!("midsurf: error: {path}: ");
-    assert!(
-        lines[0].starts_with(&prefix),
-        "{:?} should start with {prefix:?}",
-        lines[0]
-    );
+    assert!(lines[0].starts_with(&prefix), "{:?} should start with {prefix:?}", lines[0]);
     lines[0][prefix.len()..].to_string()
 }
 
@@ -36,19 +32,13 @@ fn directory() {
 
 #[test]
 fn empty_file() {
-    assert_eq!(
-        inspect("tests/data/empty.step"),
-        "is empty, not a STEP file"
-    );
+    assert_eq!(inspect("tests/data/empty.step"), "is empty, not a STEP file");
 }
 
 #[test]
 fn text_that_is_not_step() {
     let why = inspect("tests/data/not_step.step");
-    assert!(
-        why.contains("not a readable STEP file") || why.contains("STEP"),
-        "{why}"
-    );
+    assert!(why.contains("not a readable STEP file") || why.contains("STEP"), "{why}");
 }
 
 #[test]
@@ -61,10 +51,7 @@ fn truncated_step() {
 fn surfaces_without_a_solid() {
     let why = inspect("tests/data/faces_only.step");
     assert!(why.contains("no solid"), "{why}");
-    assert!(
-        why.contains("1 face"),
-        "says what the file has instead: {why}"
-    );
+    assert!(why.contains("1 face"), "says what the file has instead: {why}");
 }
 
 #[test]
@@ -108,10 +95,7 @@ fn sidecar_that_hangs_is_stopped() {
             .args(["inspect", "fixtures/flat_plate.step"]),
         "fixtures/flat_plate.step",
     );
-    assert_eq!(
-        why,
-        "the OCCT sidecar did not answer 'load_step' within 2 s and was stopped"
-    );
+    assert_eq!(why, "the OCCT sidecar did not answer 'load_step' within 2 s and was stopped");
 }
 
 #[test]
@@ -119,43 +103,29 @@ fn python_without_ocp_names_the_setup_command() {
     let real = root().join(".venv/bin/python");
     let why = fails_with_one_line(
         midsurf()
-            .env(
-                "MIDSURF_PYTHON",
-                root().join("tests/fake/python_without_ocp"),
-            )
+            .env("MIDSURF_PYTHON", root().join("tests/fake/python_without_ocp"))
             .env("MIDSURF_TEST_REAL_PYTHON", real)
             .args(["inspect", "fixtures/flat_plate.step"]),
         "fixtures/flat_plate.step",
     );
-    assert!(
-        why.contains("OCP") && why.contains("scripts/setup"),
-        "{why}"
-    );
+    assert!(why.contains("OCP") && why.contains("scripts/setup"), "{why}");
 }
 
 #[test]
 fn sidecar_of_another_protocol_version() {
     let why = fails_with_one_line(
         midsurf()
-            .env(
-                "MIDSURF_PYTHON",
-                root().join("tests/fake/old_protocol_python"),
-            )
+            .env("MIDSURF_PYTHON", root().join("tests/fake/old_protocol_python"))
             .args(["inspect", "fixtures/flat_plate.step"]),
         "fixtures/flat_plate.step",
     );
-    assert!(
-        why.contains("protocol") && why.contains("scripts/setup"),
-        "{why}"
-    );
+    assert!(why.contains("protocol") && why.contains("scripts/setup"), "{why}");
 }
 
 #[test]
 fn missing_python_says_how_to_fix() {
     let why = fails_with_one_line(
-        midsurf()
-            .env("MIDSURF_PYTHON", "/nonexistent/python")
-            .args(["inspect", "fixtures/flat_plate.step"]),
+        midsurf().env("MIDSURF_PYTHON", "/nonexistent/python").args(["inspect", "fixtures/flat_plate.step"]),
         "fixtures/flat_plate.step",
     );
     assert!(why.contains("MIDSURF_PYTHON"), "{why}");
@@ -165,9 +135,5 @@ fn missing_python_says_how_to_fix() {
 fn bad_option_values_are_usage_errors() {
     let out = outcome(midsurf().args(["pairs", "fixtures/flat_plate.step", "--t-max", "0"]));
     assert_eq!(out.code, 2);
-    assert!(
-        out.stderr.contains("not a positive length"),
-        "{}",
-        out.stderr
-    );
+    assert!(out.stderr.contains("not a positive length"), "{}", out.stderr);
 }

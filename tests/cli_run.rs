@@ -5,22 +5,9 @@ mod common;
 use common::{midsurf, outcome, root, scratch};
 use serde_json::Value;
 
-fn run(
-    input: &str,
-    output: &std::path::Path,
-    report: &std::path::Path,
-    extra: &[&str],
-) -> common::Outcome {
+fn run(input: &str, output: &std::path::Path, report: &std::path::Path, extra: &[&str]) -> common::Outcome {
     let mut cmd = midsurf();
-    cmd.args([
-        "run",
-        input,
-        "-o",
-        output.to_str().unwrap(),
-        "--report",
-        report.to_str().unwrap(),
-    ])
-    .args(extra);
+    cmd.args(["run", input, "-o", output.to_str().unwrap(), "--report", report.to_str().unwrap()]).args(extra);
     outcome(&mut cmd)
 }
 
@@ -44,10 +31,8 @@ fn flat_plate_gives_one_patch_at_half_thickness() {
     let step = std::fs::read_to_string(&out).unwrap();
     assert!(step.contains("patch 1 t=2.000"), "face names in the STEP");
     // Nothing but the two outputs in the directory: no temporary left behind.
-    let mut names: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().into_string().unwrap())
-        .collect();
+    let mut names: Vec<String> =
+        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
     names.sort();
     assert_eq!(names, ["mid.step", "report.json"]);
 }
@@ -55,74 +40,44 @@ fn flat_plate_gives_one_patch_at_half_thickness() {
 #[test]
 fn csv_and_preview_beside_the_step() {
     let dir = scratch("run-csv");
-    let (out, rep, csv, glb) = (
-        dir.join("mid.step"),
-        dir.join("r.json"),
-        dir.join("p.csv"),
-        dir.join("p.glb"),
-    );
+    let (out, rep, csv, glb) = (dir.join("mid.step"), dir.join("r.json"), dir.join("p.csv"), dir.join("p.glb"));
     let o = run(
         "fixtures/open_box_ribs.step",
         &out,
         &rep,
-        &[
-            "--csv",
-            csv.to_str().unwrap(),
-            "--preview",
-            glb.to_str().unwrap(),
-        ],
+        &["--csv", csv.to_str().unwrap(), "--preview", glb.to_str().unwrap()],
     );
     assert_eq!(o.code, 0, "{}", o.stderr);
     let report = read_json(&rep);
     let csv = std::fs::read_to_string(&csv).unwrap();
     let mut lines = csv.lines();
-    assert_eq!(
-        lines.next(),
-        Some("patch,solid,kind,thickness,area,faces,source_faces")
-    );
+    assert_eq!(lines.next(), Some("patch,solid,kind,thickness,area,faces,source_faces"));
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     let patches = report["patches"].as_array().unwrap();
     assert_eq!(rows.len(), patches.len());
     for (row, patch) in rows.iter().zip(patches) {
         assert_eq!(row[0], patch["id"].to_string());
         let t: f64 = row[3].parse().unwrap();
-        assert!(
-            (t - patch["thickness"]["mean"].as_f64().unwrap()).abs() < 5e-4,
-            "{row:?}"
-        );
+        assert!((t - patch["thickness"]["mean"].as_f64().unwrap()).abs() < 5e-4, "{row:?}");
         let area: f64 = row[4].parse().unwrap();
-        assert!(
-            (area - patch["area"].as_f64().unwrap()).abs() < 5e-3,
-            "{row:?}"
-        );
+        assert!((area - patch["area"].as_f64().unwrap()).abs() < 5e-3, "{row:?}");
     }
     let glb = std::fs::read(&glb).unwrap();
     assert_eq!(&glb[..4], b"glTF");
-    assert_eq!(
-        u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize,
-        glb.len()
-    );
+    assert_eq!(u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize, glb.len());
 }
 
 /// The z of every vertex of a STEP file (VERTEX_POINT -> CARTESIAN_POINT), rounded to 1e-6.
 fn vertex_heights(path: &std::path::Path) -> std::collections::BTreeSet<i64> {
     let step = std::fs::read_to_string(path).unwrap();
     // Entity id -> its text, one entity per statement.
-    let entities: std::collections::BTreeMap<&str, &str> = step
-        .split(';')
-        .filter_map(|e| e.trim().split_once('='))
-        .map(|(id, body)| (id.trim(), body.trim()))
-        .collect();
+    let entities: std::collections::BTreeMap<&str, &str> =
+        step.split(';').filter_map(|e| e.trim().split_once('=')).map(|(id, body)| (id.trim(), body.trim())).collect();
     entities
         .values()
         .filter_map(|body| body.strip_prefix("VERTEX_POINT("))
         .map(|args| {
-            let point = entities[args
-                .rsplit(',')
-                .next()
-                .unwrap()
-                .trim_end_matches(')')
-                .trim()];
+            let point = entities[args.rsplit(',').next().unwrap().trim_end_matches(')').trim()];
             let coords = &point[point.rfind('(').unwrap() + 1..point.find(')').unwrap()];
             let z: f64 = coords.split(',').nth(2).unwrap().trim().parse().unwrap();
             (z * 1e6).round() as i64
@@ -135,16 +90,8 @@ fn a_plate_on_its_top_or_bottom_skin_keeps_its_thickness() {
     let dir = scratch("run-position");
     let mut heights = Vec::new();
     for position in ["mid", "top", "bottom"] {
-        let (out, rep) = (
-            dir.join(format!("{position}.step")),
-            dir.join(format!("{position}.json")),
-        );
-        let o = run(
-            "fixtures/flat_plate.step",
-            &out,
-            &rep,
-            &["--position", position],
-        );
+        let (out, rep) = (dir.join(format!("{position}.step")), dir.join(format!("{position}.json")));
+        let o = run("fixtures/flat_plate.step", &out, &rep, &["--position", position]);
         assert_eq!(o.code, 0, "{}", o.stderr);
         let report = read_json(&rep);
         assert_eq!(report["parameters"]["position"], position);
@@ -163,19 +110,11 @@ fn patches_on_a_skin_still_meet_at_bends_and_corners() {
     for part in ["bent_sheet", "l_bracket", "t_rib"] {
         for position in ["top", "bottom"] {
             let (out, rep) = (dir.join("mid.step"), dir.join("r.json"));
-            let o = run(
-                &format!("fixtures/{part}.step"),
-                &out,
-                &rep,
-                &["--position", position],
-            );
+            let o = run(&format!("fixtures/{part}.step"), &out, &rep, &["--position", position]);
             assert_eq!(o.code, 0, "{part} {position}: {}", o.stderr);
             let report = read_json(&rep);
             assert_eq!(report["topology"]["components"], 1, "{part} {position}");
-            assert_eq!(
-                report["result"]["free_edges"]["open_edges"], 0,
-                "{part} {position}"
-            );
+            assert_eq!(report["result"]["free_edges"]["open_edges"], 0, "{part} {position}");
         }
     }
 }
@@ -188,12 +127,7 @@ fn no_pairs_gives_an_empty_valid_output_and_exit_1() {
     assert_eq!(o.code, 1, "{}", o.stderr);
     let report = read_json(&rep);
     assert_eq!(report["patches"].as_array().unwrap().len(), 0);
-    let codes: Vec<&str> = report["warnings"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|w| w["code"].as_str().unwrap())
-        .collect();
+    let codes: Vec<&str> = report["warnings"].as_array().unwrap().iter().map(|w| w["code"].as_str().unwrap()).collect();
     assert!(codes.contains(&"no_pairs"), "{codes:?}");
     assert!(out.is_file());
 }
@@ -204,17 +138,8 @@ fn bad_input_writes_nothing() {
     let (out, rep) = (dir.join("mid.step"), dir.join("report.json"));
     let o = run("tests/data/truncated.step", &out, &rep, &[]);
     assert_eq!(o.code, 2);
-    assert!(
-        o.stderr
-            .starts_with("midsurf: error: tests/data/truncated.step: "),
-        "{}",
-        o.stderr
-    );
-    assert_eq!(
-        std::fs::read_dir(&dir).unwrap().count(),
-        0,
-        "nothing written"
-    );
+    assert!(o.stderr.starts_with("midsurf: error: tests/data/truncated.step: "), "{}", o.stderr);
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "nothing written");
 }
 
 #[test]
@@ -234,11 +159,7 @@ fn the_input_is_never_overwritten() {
     let before = std::fs::read(&input).unwrap();
     let o = run(input.to_str().unwrap(), &input, &dir.join("r.json"), &[]);
     assert_eq!(o.code, 2);
-    assert!(
-        o.stderr.contains("never overwrites its input"),
-        "{}",
-        o.stderr
-    );
+    assert!(o.stderr.contains("never overwrites its input"), "{}", o.stderr);
     assert_eq!(std::fs::read(&input).unwrap(), before);
 }
 
@@ -247,20 +168,12 @@ fn two_runs_give_identical_bytes() {
     let dir = scratch("run-twice");
     let mut outputs = Vec::new();
     for k in 0..2 {
-        let (out, rep) = (
-            dir.join(format!("mid{k}.step")),
-            dir.join(format!("r{k}.json")),
-        );
+        let (out, rep) = (dir.join(format!("mid{k}.step")), dir.join(format!("r{k}.json")));
         let o = run("fixtures/open_box_ribs.step", &out, &rep, &["--no-timings"]);
         assert!(o.code <= 1, "{}", o.stderr);
-        let report = std::fs::read_to_string(&rep)
-            .unwrap()
-            .replace(&format!("mid{k}.step"), "mid.step");
+        let report = std::fs::read_to_string(&rep).unwrap().replace(&format!("mid{k}.step"), "mid.step");
         outputs.push((std::fs::read(&out).unwrap(), report));
     }
-    assert!(
-        outputs[0].0 == outputs[1].0,
-        "STEP bytes differ between runs"
-    );
+    assert!(outputs[0].0 == outputs[1].0, "STEP bytes differ between runs");
     assert_eq!(outputs[0].1, outputs[1].1);
 }

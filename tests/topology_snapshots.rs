@@ -11,13 +11,8 @@ fn topology_of_every_fixture() {
     snapshot_every_fixture("topology_snapshots", "topology", |relative, fixture| {
         let step = dir.join(format!("{fixture}.step"));
         let summary = dir.join(format!("{fixture}.txt"));
-        let out = outcome(
-            midsurf()
-                .args(["run", relative, "--no-timings", "-o"])
-                .arg(&step)
-                .arg("--summary")
-                .arg(&summary),
-        );
+        let out =
+            outcome(midsurf().args(["run", relative, "--no-timings", "-o"]).arg(&step).arg("--summary").arg(&summary));
         assert!(out.code == 0 || out.code == 1, "{relative}: {}", out.stderr);
         std::fs::read_to_string(&summary).unwrap()
     });

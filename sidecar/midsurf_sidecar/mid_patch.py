@@ -2,11 +2,13 @@
 a plane; the patch is a compound of the new faces in request order."""
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from OCP.BRep import BRep_Builder
-from OCP.TopAbs import TopAbs_FACE
+from OCP.BRepTools import BRepTools, BRepTools_ReShape
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_WIRE
+from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
 from .errors import OpError, one_line
@@ -30,41 +32,82 @@ class Clip:
     narrow: float
 
 
+@dataclass(frozen=True)
+class Options:
+    """`clip`: see Clip; `reverse`: turn every new face over (the wall's reference side is its bottom: the
+    patch normal then points out of the top side); `fill`: solid edge ids of suppressed features, whose inner
+    loops are removed from the source faces before they are offset or projected."""
+
+    clip: Clip | None = None
+    reverse: bool = False
+    fill: list[int] = field(default_factory=list)
+
+
 def offset_patch(
-    solid: TopoDS_Shape, face_ids: list[int], distance: float, clip: Clip | None = None, reverse: bool = False
-) -> tuple[TopoDS_Compound, list]:
-    faces = indexed_map(solid, TopAbs_FACE)
-    return _patch(faces, face_ids, lambda face: offset_face(face, distance), clip, reverse)
+    solid: TopoDS_Shape, face_ids: list[int], distance: float, options: Options = Options()
+) -> tuple[TopoDS_Compound, list, int]:
+    return _patch(solid, face_ids, lambda face: offset_face(face, distance), options)
 
 
 def projected_patch(
-    solid: TopoDS_Shape, face_ids: list[int], origin: Vec, normal: Vec, clip: Clip | None = None, reverse: bool = False
-) -> tuple[TopoDS_Compound, list]:
-    faces = indexed_map(solid, TopAbs_FACE)
-    return _patch(faces, face_ids, lambda face: project_face(face, origin, normal), clip, reverse)
+    solid: TopoDS_Shape, face_ids: list[int], origin: Vec, normal: Vec, options: Options = Options()
+) -> tuple[TopoDS_Compound, list, int]:
+    return _patch(solid, face_ids, lambda face: project_face(face, origin, normal), options)
+
+
+def fill_loops(face: TopoDS_Face, edges: list[TopoDS_Shape]) -> tuple[TopoDS_Face, int]:
+    """`face` without its inner wires that hold one of `edges` (the loops a suppressed hole or boss left), and
+    how many went. The outer wire always stays."""
+    outer = BRepTools.OuterWire_s(face)
+    reshape = BRepTools_ReShape()
+    removed = 0
+    wires = TopExp_Explorer(face, TopAbs_WIRE)
+    while wires.More():
+        wire = wires.Current()
+        wires.Next()
+        if wire.IsSame(outer):
+            continue
+        explorer = TopExp_Explorer(wire, TopAbs_EDGE)
+        while explorer.More():
+            if any(explorer.Current().IsSame(e) for e in edges):
+                reshape.Remove(wire)
+                removed += 1
+                break
+            explorer.Next()
+    if removed == 0:
+        return face, 0
+    return TopoDS.Face(reshape.Apply(face)), removed
 
 
 def _patch(
-    face_map: IndexedShapeMap, face_ids: list[int], make: FaceMaker, clip: Clip | None, reverse: bool
-) -> tuple[TopoDS_Compound, list[dict[str, Any]]]:
+    solid: TopoDS_Shape, face_ids: list[int], make: FaceMaker, options: Options
+) -> tuple[TopoDS_Compound, list[dict[str, Any]], int]:
     """(compound of the new faces, the reply's `faces`: one entry per face made, several per source face when
-    a clip splits it); OpError `patch_failed` naming the face. `reverse` turns every new face over (the wall's
-    reference side is its bottom: the patch normal then points out of the top side)."""
+    a clip splits it, inner loops filled); OpError `patch_failed` naming the face."""
+    face_map: IndexedShapeMap = indexed_map(solid, TopAbs_FACE)
+    edge_map = indexed_map(solid, TopAbs_EDGE) if options.fill else None
+    fill_edges = [edge_map.FindKey(e + 1) for e in options.fill] if edge_map is not None else []
+    clip = options.clip
     builder = BRep_Builder()
     compound = TopoDS_Compound()
     builder.MakeCompound(compound)
     described = []
+    filled = 0
     for k, face_id in enumerate(face_ids):
         try:
-            new_faces = [make(TopoDS.Face(face_map.FindKey(face_id + 1)))]
+            source = TopoDS.Face(face_map.FindKey(face_id + 1))
+            if fill_edges:
+                source, removed = fill_loops(source, fill_edges)
+                filled += removed
+            new_faces = [make(source)]
             if clip is not None and clip.partners[k]:
                 partners = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.partners[k]]
                 new_faces = clip_to_partners(new_faces[0], partners, clip.fuzzy, clip.narrow)
-            if reverse:
+            if options.reverse:
                 new_faces = [TopoDS.Face(f.Reversed()) for f in new_faces]
             described.extend({"source": face_id, **measure(f)} for f in new_faces)
         except Exception as exc:  # OpError from our checks, Standard_Failure from OCCT
             raise OpError(f"face {face_id}: {one_line(exc)}", "patch_failed") from exc
         for f in new_faces:
             builder.Add(compound, f)
-    return compound, described
+    return compound, described, filled

@@ -69,13 +69,16 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     reverse = args.get("reverse", False)
     if not isinstance(reverse, bool):
         raise BadArgs("`reverse` must be true or false")
+    edge_count = indexed_map(solid, TopAbs_EDGE).Size()
+    fill = index_list(args.get("fill", []), edge_count, "fill edge", "the solid")
+    options = mid_patch.Options(clip, reverse, fill)
     if "offset" in args:
-        patch, faces = mid_patch.offset_patch(solid, face_ids, require_number(args, "offset"), clip, reverse)
+        patch, faces, filled = mid_patch.offset_patch(solid, face_ids, require_number(args, "offset"), options)
     else:
         plane = require_object(args, "plane")
         origin, normal = require_point(plane, "origin"), require_direction(plane, "normal")
-        patch, faces = mid_patch.projected_patch(solid, face_ids, origin, normal, clip, reverse)
-    return {"handle": store.put(patch), "faces": faces}
+        patch, faces, filled = mid_patch.projected_patch(solid, face_ids, origin, normal, options)
+    return {"handle": store.put(patch), "faces": faces, "filled": filled}
 
 
 def _clip(args: dict[str, Any], count: int, faces: int) -> mid_patch.Clip | None:

@@ -342,3 +342,21 @@ def test_clip_needs_one_partner_list_per_face(client, tmp_path):
     handle = client.load(box(40, 40, 5), tmp_path)
     err = client.err("make_patch", handle=handle, faces=[0, 1], offset=-1.0, clip={"partners": [[2]], "fuzzy": 0.0, "narrow": 1.0})
     assert err["code"] == "bad_args" and "one list per face" in err["message"]
+
+
+def test_fill_removes_the_inner_loops_holding_the_given_edges(client, tmp_path):
+    handle = client.load(plate_with_hole(2.0), tmp_path)
+    g = graph(client, handle)
+    top = face_with(g, "plane", lambda f: f["normal"][2] > 0.99)
+    assert len(top["loops"]) == 2, "the hole is an inner loop of the top face"
+    hole_edges = top["loops"][1]
+    kept = client.ok("make_patch", handle=handle, faces=[top["id"]], offset=-2.5)
+    assert kept["filled"] == 0 and kept["faces"][0]["area"] == pytest.approx(1600.0 - math.pi * 4.0)
+    ok = client.ok("make_patch", handle=handle, faces=[top["id"]], offset=-2.5, fill=hole_edges)
+    assert ok["filled"] == 1
+    assert ok["faces"][0]["area"] == pytest.approx(1600.0)
+    (face,) = patch_faces(client, ok["handle"])
+    assert indexed_map(face, TopAbs_WIRE).Size() == 1
+    assert BRepCheck_Analyzer(face).IsValid()
+    err = client.err("make_patch", handle=handle, faces=[top["id"]], offset=-2.5, fill=[10_000])
+    assert "fill edge" in err["message"]

@@ -5,10 +5,7 @@ use glam::DVec2;
 /// Signed area of a polygon (counter-clockwise positive).
 pub fn signed_area(poly: &[DVec2]) -> f64 {
     let n = poly.len();
-    (0..n)
-        .map(|i| poly[i].perp_dot(poly[(i + 1) % n]))
-        .sum::<f64>()
-        * 0.5
+    (0..n).map(|i| poly[i].perp_dot(poly[(i + 1) % n])).sum::<f64>() * 0.5
 }
 
 /// The part of `subject` inside the convex, counter-clockwise polygon `clip`.

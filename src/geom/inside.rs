@@ -44,25 +44,12 @@ impl SolidMesh {
                 let corners = t.map(|i| mesh.vertices[i as usize]);
                 let lo = corners[0].min(corners[1]).min(corners[2]);
                 let hi = corners[0].max(corners[1]).max(corners[2]);
-                triangles.push(Triangle {
-                    corners,
-                    envelope: AABB::from_corners(lo.to_array(), hi.to_array()),
-                });
+                triangles.push(Triangle { corners, envelope: AABB::from_corners(lo.to_array(), hi.to_array()) });
             }
         }
-        let lo = triangles
-            .iter()
-            .map(|t| DVec3::from(t.envelope.lower()))
-            .fold(DVec3::INFINITY, DVec3::min);
-        let hi = triangles
-            .iter()
-            .map(|t| DVec3::from(t.envelope.upper()))
-            .fold(DVec3::NEG_INFINITY, DVec3::max);
-        Some(SolidMesh {
-            tree: RTree::bulk_load(triangles),
-            lo,
-            hi,
-        })
+        let lo = triangles.iter().map(|t| DVec3::from(t.envelope.lower())).fold(DVec3::INFINITY, DVec3::min);
+        let hi = triangles.iter().map(|t| DVec3::from(t.envelope.upper())).fold(DVec3::NEG_INFINITY, DVec3::max);
+        Some(SolidMesh { tree: RTree::bulk_load(triangles), lo, hi })
     }
 
     pub fn contains(&self, p: DVec3) -> bool {
@@ -70,20 +57,14 @@ impl SolidMesh {
             return false;
         }
         let reach = (self.hi - self.lo).length() * 2.0;
-        let odd = DIRECTIONS
-            .iter()
-            .filter(|d| self.crossings(p, d.normalize(), reach) % 2 == 1)
-            .count();
+        let odd = DIRECTIONS.iter().filter(|d| self.crossings(p, d.normalize(), reach) % 2 == 1).count();
         odd >= 2
     }
 
     fn crossings(&self, p: DVec3, dir: DVec3, reach: f64) -> usize {
         let end = p + dir * reach;
         let query = AABB::from_corners(p.min(end).to_array(), p.max(end).to_array());
-        self.tree
-            .locate_in_envelope_intersecting(&query)
-            .filter(|t| hit_triangle(p, dir, t.corners).is_some())
-            .count()
+        self.tree.locate_in_envelope_intersecting(&query).filter(|t| hit_triangle(p, dir, t.corners).is_some()).count()
     }
 }
 

@@ -37,9 +37,6 @@ mod tests {
         let o = DVec3::new(0.2, 0.2, 1.0);
         assert!((hit_triangle(o, -DVec3::Z, tri).unwrap() - 1.0).abs() < 1e-12);
         assert_eq!(hit_triangle(o, DVec3::Z, tri), None);
-        assert_eq!(
-            hit_triangle(DVec3::new(2.0, 2.0, 1.0), -DVec3::Z, tri),
-            None
-        );
+        assert_eq!(hit_triangle(DVec3::new(2.0, 2.0, 1.0), -DVec3::Z, tri), None);
     }
 }

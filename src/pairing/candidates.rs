@@ -25,10 +25,7 @@ pub fn candidate_pairs(graph: &FaceGraph, t_max: f64) -> Vec<(FaceId, FaceId)> {
         .iter()
         .map(|f| {
             let b = f.bbox.inflated(t_max * 0.5);
-            FaceBox {
-                face: f.id,
-                envelope: AABB::from_corners(b.min.to_array(), b.max.to_array()),
-            }
+            FaceBox { face: f.id, envelope: AABB::from_corners(b.min.to_array(), b.max.to_array()) }
         })
         .collect();
     let envelopes: Vec<AABB<[f64; 3]>> = boxes.iter().map(|b| b.envelope).collect();

@@ -10,37 +10,15 @@ use crate::geom::angle_between;
 use crate::tolerance::Tolerances;
 
 /// Tests whether faces `a` and `b` are the two skins of one wall.
-pub fn test_pair(
-    graph: &FaceGraph,
-    a: FaceId,
-    b: FaceId,
-    tol: &Tolerances,
-) -> Result<Pair, Rejection> {
+pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> Result<Pair, Rejection> {
     let (fa, fb) = (&graph.faces[a], &graph.faces[b]);
     let (kind, thickness, overlap_area) = match (&fa.surface, &fb.surface) {
+        (Surface::Plane { origin: pa, normal: na }, Surface::Plane { origin: pb, normal: nb }) => {
+            planes(fa, fb, (*pa, *na), (*pb, *nb), tol)?
+        }
         (
-            Surface::Plane {
-                origin: pa,
-                normal: na,
-            },
-            Surface::Plane {
-                origin: pb,
-                normal: nb,
-            },
-        ) => planes(fa, fb, (*pa, *na), (*pb, *nb), tol)?,
-        (
-            Surface::Cylinder {
-                origin: oa,
-                axis: aa,
-                radius: ra,
-                convex: ca,
-            },
-            Surface::Cylinder {
-                origin: ob,
-                axis: ab,
-                radius: rb,
-                convex: cb,
-            },
+            Surface::Cylinder { origin: oa, axis: aa, radius: ra, convex: ca },
+            Surface::Cylinder { origin: ob, axis: ab, radius: rb, convex: cb },
         ) => {
             coaxial(*oa, *aa, *ob, *ab, tol)?;
             let t = radial_gap((*ra, *ca), (*rb, *cb), tol)?;
@@ -49,16 +27,8 @@ pub fn test_pair(
             (PairKind::Cylindrical, Thickness::uniform(t), ov.area)
         }
         (
-            Surface::Sphere {
-                center: ca,
-                radius: ra,
-                convex: xa,
-            },
-            Surface::Sphere {
-                center: cb,
-                radius: rb,
-                convex: xb,
-            },
+            Surface::Sphere { center: ca, radius: ra, convex: xa },
+            Surface::Sphere { center: cb, radius: rb, convex: xb },
         ) => {
             let offset = ca.distance(*cb);
             if offset > tol.coaxial {
@@ -68,20 +38,8 @@ pub fn test_pair(
             sampled_pair(fa, fb, PairKind::Spherical, Some(t), tol)?
         }
         (
-            Surface::Torus {
-                center: ca,
-                axis: aa,
-                major_radius: ma,
-                minor_radius: ra,
-                convex: xa,
-            },
-            Surface::Torus {
-                center: cb,
-                axis: ab,
-                major_radius: mb,
-                minor_radius: rb,
-                convex: xb,
-            },
+            Surface::Torus { center: ca, axis: aa, major_radius: ma, minor_radius: ra, convex: xa },
+            Surface::Torus { center: cb, axis: ab, major_radius: mb, minor_radius: rb, convex: xb },
         ) => {
             coaxial(*ca, *aa, *cb, *ab, tol)?;
             let offset = ca.distance(*cb).max((ma - mb).abs());
@@ -92,18 +50,8 @@ pub fn test_pair(
             sampled_pair(fa, fb, PairKind::Toroidal, Some(t), tol)?
         }
         (
-            Surface::Cone {
-                origin: oa,
-                axis: aa,
-                convex: xa,
-                ..
-            },
-            Surface::Cone {
-                origin: ob,
-                axis: ab,
-                convex: xb,
-                ..
-            },
+            Surface::Cone { origin: oa, axis: aa, convex: xa, .. },
+            Surface::Cone { origin: ob, axis: ab, convex: xb, .. },
         ) => {
             coaxial(*oa, *aa, *ob, *ab, tol)?;
             if xa == xb {
@@ -111,38 +59,21 @@ pub fn test_pair(
             }
             sampled_pair(fa, fb, PairKind::Conical, None, tol)?
         }
-        (sa, sb) if sa.is_freeform() || sb.is_freeform() => {
-            sampled_pair(fa, fb, PairKind::Freeform, None, tol)?
-        }
-        (sa, sb) => {
-            return Err(Rejection::Incompatible {
-                kinds: [sa.kind_name(), sb.kind_name()],
-            })
-        }
+        (sa, sb) if sa.is_freeform() || sb.is_freeform() => sampled_pair(fa, fb, PairKind::Freeform, None, tol)?,
+        (sa, sb) => return Err(Rejection::Incompatible { kinds: [sa.kind_name(), sb.kind_name()] }),
     };
-    Ok(Pair {
-        faces: [a.min(b), a.max(b)],
-        kind,
-        thickness,
-        overlap_area,
-    })
+    Ok(Pair { faces: [a.min(b), a.max(b)], kind, thickness, overlap_area })
 }
 
 fn mesh(face: &Face) -> Result<&crate::face_graph::Mesh, Rejection> {
     // Without a mesh no overlap can be measured: the faces cannot be shown to overlap.
-    face.mesh.as_ref().ok_or(Rejection::Overlap {
-        share: 0.0,
-        limit: 0.0,
-    })
+    face.mesh.as_ref().ok_or(Rejection::Overlap { share: 0.0, limit: 0.0 })
 }
 
 fn check_overlap(ov: &Overlap, tol: &Tolerances) -> Result<(), Rejection> {
     let share = ov.share();
     if share < tol.overlap_share {
-        return Err(Rejection::Overlap {
-            share,
-            limit: tol.overlap_share,
-        });
+        return Err(Rejection::Overlap { share, limit: tol.overlap_share });
     }
     Ok(())
 }
@@ -188,10 +119,7 @@ fn planes(
     };
     // Distance first: it is cheap, and most candidates from the box search fail it.
     if thickness.max > tol.t_max {
-        return Err(Rejection::Distance {
-            distance: thickness.max,
-            limit: tol.t_max,
-        });
+        return Err(Rejection::Distance { distance: thickness.max, limit: tol.t_max });
     }
     let ov = overlap::planar(mesh(fa)?, mesh(fb)?, mid_normal);
     check_overlap(&ov, tol)?;
@@ -211,11 +139,7 @@ fn draft_thickness(
     let onto_mid = |p: DVec3| p - mid_normal * (mid_normal.dot(p) - mid_offset);
     let smaller = if fa.area <= fb.area { fa } else { fb };
     let mean = thickness_at(onto_mid(smaller.centroid));
-    let samples = smaller
-        .mesh
-        .as_ref()
-        .map(|m| m.vertices.as_slice())
-        .unwrap_or(&[]);
+    let samples = smaller.mesh.as_ref().map(|m| m.vertices.as_slice()).unwrap_or(&[]);
     let (mut min, mut max) = (mean, mean);
     for &p in samples {
         let t = thickness_at(onto_mid(p));
@@ -229,10 +153,7 @@ fn draft_thickness(
 fn coaxial(oa: DVec3, aa: DVec3, ob: DVec3, ab: DVec3, tol: &Tolerances) -> Result<(), Rejection> {
     let tilt = angle_between(aa, ab).min(angle_between(aa, -ab));
     if tilt > tol.parallel_angle {
-        return Err(Rejection::Angle {
-            degrees: tilt.to_degrees(),
-            limit_degrees: tol.parallel_angle.to_degrees(),
-        });
+        return Err(Rejection::Angle { degrees: tilt.to_degrees(), limit_degrees: tol.parallel_angle.to_degrees() });
     }
     let d = ob - oa;
     let offset = (d - aa * d.dot(aa)).length();
@@ -244,11 +165,7 @@ fn coaxial(oa: DVec3, aa: DVec3, ob: DVec3, ab: DVec3, tol: &Tolerances) -> Resu
 
 /// Two concentric surfaces of opposite sense: the convex one (normal away from the centre) must be outside
 /// the concave one, and the gap between them is the thickness.
-fn radial_gap(
-    (ra, convex_a): (f64, bool),
-    (rb, convex_b): (f64, bool),
-    tol: &Tolerances,
-) -> Result<f64, Rejection> {
+fn radial_gap((ra, convex_a): (f64, bool), (rb, convex_b): (f64, bool), tol: &Tolerances) -> Result<f64, Rejection> {
     if convex_a == convex_b {
         return Err(Rejection::SameSense);
     }
@@ -258,10 +175,7 @@ fn radial_gap(
         return Err(Rejection::NotFacing);
     }
     if t > tol.t_max {
-        return Err(Rejection::Distance {
-            distance: t,
-            limit: tol.t_max,
-        });
+        return Err(Rejection::Distance { distance: t, limit: tol.t_max });
     }
     Ok(t)
 }
@@ -274,30 +188,16 @@ fn sampled_pair(
     exact: Option<f64>,
     tol: &Tolerances,
 ) -> Result<(PairKind, Thickness, f64), Rejection> {
-    let (from, to) = if fa.area <= fb.area {
-        (fa, fb)
-    } else {
-        (fb, fa)
-    };
+    let (from, to) = if fa.area <= fb.area { (fa, fb) } else { (fb, fa) };
     let max_angle = 2.0 * tol.draft_max + tol.parallel_angle;
     let Some(s) = overlap::sampled(from, to, tol.t_max, max_angle) else {
-        return Err(Rejection::Overlap {
-            share: 0.0,
-            limit: tol.overlap_share,
-        });
+        return Err(Rejection::Overlap { share: 0.0, limit: tol.overlap_share });
     };
     let share = s.share();
     let Some((mean, min, max)) = s.distance_stats().filter(|_| share >= tol.overlap_share) else {
         // A face whose partner lies in front of it, not behind, gets no hit at all.
         let facing = (to.centroid - from.point).dot(from.normal) < 0.0;
-        return Err(if facing {
-            Rejection::Overlap {
-                share,
-                limit: tol.overlap_share,
-            }
-        } else {
-            Rejection::NotFacing
-        });
+        return Err(if facing { Rejection::Overlap { share, limit: tol.overlap_share } } else { Rejection::NotFacing });
     };
     let thickness = match exact {
         Some(t) => Thickness::uniform(t),

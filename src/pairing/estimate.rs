@@ -48,10 +48,7 @@ pub fn estimate_t_max(graph: &FaceGraph, draft_max: f64) -> TMaxEstimate {
     samples.sort_by(|x, y| x.0.total_cmp(&y.0));
     let clusters = cluster(&samples);
     let total: f64 = clusters.iter().map(|c| c.overlap_area).sum();
-    let Some(dominant) = clusters
-        .iter()
-        .max_by(|x, y| x.overlap_area.total_cmp(&y.overlap_area))
-    else {
+    let Some(dominant) = clusters.iter().max_by(|x, y| x.overlap_area.total_cmp(&y.overlap_area)) else {
         return TMaxEstimate {
             t_max: DOMINANT_FACTOR * wall,
             dominant: None,
@@ -93,9 +90,6 @@ fn cluster(sorted: &[(f64, f64)]) -> Vec<ThicknessCluster> {
     }
     out.into_iter()
         .filter(|c| c.1 > 0.0)
-        .map(|(sum, w, _)| ThicknessCluster {
-            thickness: sum / w,
-            overlap_area: w,
-        })
+        .map(|(sum, w, _)| ThicknessCluster { thickness: sum / w, overlap_area: w })
         .collect()
 }

@@ -61,11 +61,9 @@ impl FaceRole {
     /// Why an unpaired face found no partner (None for the other roles).
     pub fn unpaired_reason(&self) -> Option<String> {
         match self {
-            FaceRole::Unpaired { near_miss: Some(m) } => Some(format!(
-                "best candidate face {}: {}",
-                m.candidate,
-                m.rejection.describe()
-            )),
+            FaceRole::Unpaired { near_miss: Some(m) } => {
+                Some(format!("best candidate face {}: {}", m.candidate, m.rejection.describe()))
+            }
             FaceRole::Unpaired { near_miss: None } => Some("no face within t_max".to_string()),
             _ => None,
         }
@@ -138,18 +136,12 @@ pub fn group_and_classify(
                 return FaceRole::Suppressed;
             }
             if let Some(group) = group_of[f] {
-                return FaceRole::Pair {
-                    group,
-                    side: side_of[f],
-                };
+                return FaceRole::Pair { group, side: side_of[f] };
             }
             let neighbours = graph.neighbours(f);
             let joined = neighbours.iter().find_map(|&a| {
                 let ga = group_of[a]?;
-                neighbours
-                    .iter()
-                    .any(|&b| group_of[b] == Some(ga) && side_of[b] != side_of[a])
-                    .then_some(ga)
+                neighbours.iter().any(|&b| group_of[b] == Some(ga) && side_of[b] != side_of[a]).then_some(ga)
             });
             if let Some(group) = joined {
                 return FaceRole::Thickness { group };
@@ -160,9 +152,7 @@ pub fn group_and_classify(
             if !touching.is_empty() {
                 return FaceRole::Connecting { groups: touching };
             }
-            FaceRole::Unpaired {
-                near_miss: near[f].clone(),
-            }
+            FaceRole::Unpaired { near_miss: near[f].clone() }
         })
         .collect();
     (groups, roles)
@@ -176,11 +166,7 @@ fn finish_group(group: &mut PairGroup, graph: &FaceGraph, pairs: &[Pair]) {
     group.side_conflicts.sort_unstable();
     group.side_conflicts.dedup();
     let area = |side: &Vec<FaceId>| side.iter().map(|&f| graph.faces[f].area).sum::<f64>();
-    group.reference = if area(&group.sides[1]) > area(&group.sides[0]) {
-        Side::B
-    } else {
-        Side::A
-    };
+    group.reference = if area(&group.sides[1]) > area(&group.sides[0]) { Side::B } else { Side::A };
 
     let mut by_kind: Vec<(PairKind, f64)> = Vec::new();
     let (mut weighted, mut total) = (0.0, 0.0);
@@ -199,10 +185,6 @@ fn finish_group(group: &mut PairGroup, graph: &FaceGraph, pairs: &[Pair]) {
     by_kind.sort_by(|x, y| y.1.total_cmp(&x.1).then(x.0.cmp(&y.0)));
     group.kind = by_kind.first().map(|k| k.0).unwrap_or(PairKind::Parallel);
     group.overlap_area = total;
-    let mean = if total > 0.0 {
-        weighted / total
-    } else {
-        0.5 * (min + max)
-    };
+    let mean = if total > 0.0 { weighted / total } else { 0.5 * (min + max) };
     group.thickness = Thickness { mean, min, max };
 }

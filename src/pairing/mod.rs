@@ -53,11 +53,7 @@ pub struct Thickness {
 
 impl Thickness {
     pub fn uniform(t: f64) -> Thickness {
-        Thickness {
-            mean: t,
-            min: t,
-            max: t,
-        }
+        Thickness { mean: t, min: t, max: t }
     }
 }
 
@@ -128,10 +124,7 @@ impl Rejection {
             Rejection::Incompatible { kinds } => {
                 format!("{} and {} cannot form a wall", kinds[0], kinds[1])
             }
-            Rejection::Angle {
-                degrees,
-                limit_degrees,
-            } => {
+            Rejection::Angle { degrees, limit_degrees } => {
                 format!("normals {degrees:.2} deg from opposite (limit {limit_degrees:.2})")
             }
             Rejection::NotCoaxial { offset } => {
@@ -169,12 +162,8 @@ pub struct Pairing {
 impl Pairing {
     /// Share of the solid's area that lies on paired faces.
     pub fn paired_area_share(&self, graph: &FaceGraph) -> f64 {
-        let paired: f64 = graph
-            .faces
-            .iter()
-            .filter(|f| matches!(self.roles[f.id], FaceRole::Pair { .. }))
-            .map(|f| f.area)
-            .sum();
+        let paired: f64 =
+            graph.faces.iter().filter(|f| matches!(self.roles[f.id], FaceRole::Pair { .. })).map(|f| f.area).sum();
         if graph.area > 0.0 {
             paired / graph.area
         } else {
@@ -200,21 +189,14 @@ pub fn detect(graph: &FaceGraph, tol: &Tolerances, pairable: &[bool]) -> Pairing
                         Some(old) => rejection.stage() > old.rejection.stage(),
                     };
                     if better {
-                        near[me] = Some(NearMiss {
-                            candidate: other,
-                            rejection: rejection.clone(),
-                        });
+                        near[me] = Some(NearMiss { candidate: other, rejection: rejection.clone() });
                     }
                 }
             }
         }
     }
     let (groups, roles) = groups::group_and_classify(graph, &pairs, &near, pairable);
-    Pairing {
-        pairs,
-        groups,
-        roles,
-    }
+    Pairing { pairs, groups, roles }
 }
 
 #[cfg(test)]

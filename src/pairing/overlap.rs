@@ -31,10 +31,7 @@ impl Overlap {
 }
 
 fn triangles(mesh: &Mesh, map: impl Fn(DVec3) -> DVec2) -> Vec<[DVec2; 3]> {
-    mesh.triangles
-        .iter()
-        .map(|t| t.map(|i| map(mesh.vertices[i as usize])))
-        .collect()
+    mesh.triangles.iter().map(|t| t.map(|i| map(mesh.vertices[i as usize]))).collect()
 }
 
 fn soup_area(soup: &[[DVec2; 3]]) -> f64 {
@@ -46,10 +43,7 @@ pub fn planar(a: &Mesh, b: &Mesh, normal: DVec3) -> Overlap {
     let (u, v) = plane_basis(normal);
     let map = |p: DVec3| DVec2::new(p.dot(u), p.dot(v));
     let (ta, tb) = (triangles(a, map), triangles(b, map));
-    Overlap {
-        area: soup_overlap(&ta, &tb),
-        mapped: [soup_area(&ta), soup_area(&tb)],
-    }
+    Overlap { area: soup_overlap(&ta, &tb), mapped: [soup_area(&ta), soup_area(&tb)] }
 }
 
 /// Both meshes unrolled around a common axis at radius `radius`: (angle * radius, axial position).
@@ -77,14 +71,9 @@ pub fn cylindrical(a: &Mesh, b: &Mesh, origin: DVec3, axis: DVec3, radius: f64) 
     let ta = unroll(a);
     let tb = unroll(b);
     let turn = std::f64::consts::TAU * radius;
-    let shifted: Vec<[DVec2; 3]> = [-turn, 0.0, turn]
-        .iter()
-        .flat_map(|&s| tb.iter().map(move |t| t.map(|p| p + DVec2::new(s, 0.0))))
-        .collect();
-    Overlap {
-        area: soup_overlap(&ta, &shifted),
-        mapped: [soup_area(&ta), soup_area(&tb)],
-    }
+    let shifted: Vec<[DVec2; 3]> =
+        [-turn, 0.0, turn].iter().flat_map(|&s| tb.iter().map(move |t| t.map(|p| p + DVec2::new(s, 0.0)))).collect();
+    Overlap { area: soup_overlap(&ta, &shifted), mapped: [soup_area(&ta), soup_area(&tb)] }
 }
 
 /// Rays cast from sample points of `from` along its inward normal that hit `to` within `max_distance` on a
@@ -113,16 +102,8 @@ impl Sampled {
             return None;
         }
         let mean = self.distances.iter().map(|(d, w)| d * w).sum::<f64>() / self.hit_area;
-        let min = self
-            .distances
-            .iter()
-            .map(|d| d.0)
-            .fold(f64::INFINITY, f64::min);
-        let max = self
-            .distances
-            .iter()
-            .map(|d| d.0)
-            .fold(f64::NEG_INFINITY, f64::max);
+        let min = self.distances.iter().map(|d| d.0).fold(f64::INFINITY, f64::min);
+        let max = self.distances.iter().map(|d| d.0).fold(f64::NEG_INFINITY, f64::max);
         Some((mean, min, max))
     }
 }
@@ -147,11 +128,7 @@ pub fn sampled(from: &Face, to: &Face, max_distance: f64, max_angle: f64) -> Opt
         })
         .collect();
     let min_cos = max_angle.cos();
-    let mut out = Sampled {
-        hit_area: 0.0,
-        from_area: 0.0,
-        distances: Vec::new(),
-    };
+    let mut out = Sampled { hit_area: 0.0, from_area: 0.0, distances: Vec::new() };
     for t in &fm.triangles {
         let p = t.map(|i| fm.vertices[i as usize]);
         let n = t.map(|i| fm.normals[i as usize]);

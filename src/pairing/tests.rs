@@ -61,10 +61,7 @@ fn draft_pair_within_twice_the_draft_limit_only() {
     let inside = pair_of(tilted_top(5.9)).unwrap();
     assert_eq!(inside.kind, PairKind::Draft);
     let outside = pair_of(tilted_top(6.1)).unwrap_err();
-    assert!(
-        matches!(outside, Rejection::Angle { degrees, .. } if (degrees - 6.1).abs() < 1e-6),
-        "{outside:?}"
-    );
+    assert!(matches!(outside, Rejection::Angle { degrees, .. } if (degrees - 6.1).abs() < 1e-6), "{outside:?}");
 }
 
 #[test]
@@ -73,26 +70,15 @@ fn draft_thickness_is_the_mean_over_the_face_with_its_range() {
     // The strip rises from z=2 at y=0 to 2 + 8 sin(2 deg) = 2.279 at its far edge: the wall's mean is about
     // 2.14 and its range 2..2.28 (measured across the bisector, so a hair less).
     let far = 2.0 + 8.0 * 2.0_f64.to_radians().sin();
-    assert!(
-        (p.thickness.mean - 0.5 * (2.0 + far)).abs() < 0.01,
-        "{:?}",
-        p.thickness
-    );
-    assert!(
-        (p.thickness.min - 2.0).abs() < 0.01 && (p.thickness.max - far).abs() < 0.01,
-        "{:?}",
-        p.thickness
-    );
+    assert!((p.thickness.mean - 0.5 * (2.0 + far)).abs() < 0.01, "{:?}", p.thickness);
+    assert!((p.thickness.min - 2.0).abs() < 0.01 && (p.thickness.max - far).abs() < 0.01, "{:?}", p.thickness);
 }
 
 #[test]
 fn distance_limit() {
     assert!(pair_of(slab_faces(2.99)).is_ok());
     let err = pair_of(slab_faces(3.01)).unwrap_err();
-    assert!(
-        matches!(err, Rejection::Distance { distance, .. } if (distance - 3.01).abs() < 1e-9),
-        "{err:?}"
-    );
+    assert!(matches!(err, Rejection::Distance { distance, .. } if (distance - 3.01).abs() < 1e-9), "{err:?}");
 }
 
 #[test]
@@ -111,48 +97,24 @@ fn side_by_side_faces_fail_the_overlap_test() {
     // each other.
     let faces = vec![
         rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 30.0, -DVec3::Z),
-        rect(
-            DVec3::new(31.0, 0.0, 1.0),
-            DVec3::X * 30.0,
-            DVec3::Y * 40.0,
-            DVec3::Z,
-        ),
+        rect(DVec3::new(31.0, 0.0, 1.0), DVec3::X * 30.0, DVec3::Y * 40.0, DVec3::Z),
     ];
-    assert!(
-        matches!(pair_of(faces).unwrap_err(), Rejection::Overlap { share, .. } if share == 0.0)
-    );
+    assert!(matches!(pair_of(faces).unwrap_err(), Rejection::Overlap { share, .. } if share == 0.0));
     // A sliver of overlap (2 of 30 mm) is still too little.
     let faces = vec![
         rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 30.0, -DVec3::Z),
-        rect(
-            DVec3::new(28.0, 0.0, 1.0),
-            DVec3::X * 30.0,
-            DVec3::Y * 40.0,
-            DVec3::Z,
-        ),
+        rect(DVec3::new(28.0, 0.0, 1.0), DVec3::X * 30.0, DVec3::Y * 40.0, DVec3::Z),
     ];
-    assert!(
-        matches!(pair_of(faces).unwrap_err(), Rejection::Overlap { share, .. } if share > 0.0 && share < 0.1)
-    );
+    assert!(matches!(pair_of(faces).unwrap_err(), Rejection::Overlap { share, .. } if share > 0.0 && share < 0.1));
 }
 
 #[test]
 fn one_face_pairs_with_twelve() {
     // A 130 x 10 bottom under twelve 8 x 10 top pieces separated by rib roots.
-    let mut faces = vec![rect(
-        DVec3::ZERO,
-        DVec3::Y * 10.0,
-        DVec3::X * 130.0,
-        -DVec3::Z,
-    )];
+    let mut faces = vec![rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 130.0, -DVec3::Z)];
     for k in 0..12 {
         let x = 2.0 + 10.0 * k as f64;
-        faces.push(rect(
-            DVec3::new(x, 0.0, 2.0),
-            DVec3::X * 8.0,
-            DVec3::Y * 10.0,
-            DVec3::Z,
-        ));
+        faces.push(rect(DVec3::new(x, 0.0, 2.0), DVec3::X * 8.0, DVec3::Y * 10.0, DVec3::Z));
     }
     let pairing = run(faces);
     assert_eq!(pairing.pairs.len(), 12);
@@ -160,11 +122,7 @@ fn one_face_pairs_with_twelve() {
     let g = &pairing.groups[0];
     assert_eq!(g.sides[0], vec![0]);
     assert_eq!(g.sides[1], (1..=12).collect::<Vec<_>>());
-    assert_eq!(
-        g.reference,
-        Side::A,
-        "the bottom (1300) is larger than the pieces (960)"
-    );
+    assert_eq!(g.reference, Side::A, "the bottom (1300) is larger than the pieces (960)");
     assert!((g.thickness.mean - 2.0).abs() < 1e-9);
 }
 
@@ -172,30 +130,19 @@ fn one_face_pairs_with_twelve() {
 fn coaxial_cylinders_of_a_bend() {
     let c = DVec3::new(0.0, 0.0, 0.0);
     let span = (0.0, std::f64::consts::FRAC_PI_2);
-    let p = pair_of(vec![
-        cylinder(c, 3.0, span, 40.0, false),
-        cylinder(c, 3.8, span, 40.0, true),
-    ])
-    .unwrap();
+    let p = pair_of(vec![cylinder(c, 3.0, span, 40.0, false), cylinder(c, 3.8, span, 40.0, true)]).unwrap();
     assert_eq!(p.kind, PairKind::Cylindrical);
     assert!((p.thickness.mean - 0.8).abs() < 1e-12);
     // Overlap measured at the mean radius 3.4: a quarter turn x 40.
     let expected = 3.4 * std::f64::consts::FRAC_PI_2 * 40.0;
-    assert!(
-        (p.overlap_area - expected).abs() < 0.01 * expected,
-        "{} vs {expected}",
-        p.overlap_area
-    );
+    assert!((p.overlap_area - expected).abs() < 0.01 * expected, "{} vs {expected}", p.overlap_area);
 }
 
 #[test]
 fn full_tube_overlaps_across_the_seam() {
     let span = (-std::f64::consts::PI, std::f64::consts::PI);
-    let p = pair_of(vec![
-        cylinder(DVec3::ZERO, 10.0, span, 5.0, false),
-        cylinder(DVec3::ZERO, 11.0, span, 5.0, true),
-    ])
-    .unwrap();
+    let p = pair_of(vec![cylinder(DVec3::ZERO, 10.0, span, 5.0, false), cylinder(DVec3::ZERO, 11.0, span, 5.0, true)])
+        .unwrap();
     let expected = std::f64::consts::TAU * 10.5 * 5.0;
     assert!((p.overlap_area - expected).abs() < 0.01 * expected);
 }
@@ -207,20 +154,13 @@ fn cylinder_near_misses() {
         cylinder(DVec3::ZERO, 3.0, span, 40.0, false),
         cylinder(DVec3::new(0.1, 0.0, 0.0), 3.8, span, 40.0, true),
     ]);
-    assert!(
-        matches!(off_axis, Err(Rejection::NotCoaxial { .. })),
-        "{off_axis:?}"
-    );
-    let same_sense = pair_of(vec![
-        cylinder(DVec3::ZERO, 3.0, span, 40.0, true),
-        cylinder(DVec3::ZERO, 3.8, span, 40.0, true),
-    ]);
+    assert!(matches!(off_axis, Err(Rejection::NotCoaxial { .. })), "{off_axis:?}");
+    let same_sense =
+        pair_of(vec![cylinder(DVec3::ZERO, 3.0, span, 40.0, true), cylinder(DVec3::ZERO, 3.8, span, 40.0, true)]);
     assert_eq!(same_sense, Err(Rejection::SameSense));
     // A shaft inside a hole: the convex face is inside the concave one, air between them.
-    let shaft_in_hole = pair_of(vec![
-        cylinder(DVec3::ZERO, 3.0, span, 40.0, true),
-        cylinder(DVec3::ZERO, 3.8, span, 40.0, false),
-    ]);
+    let shaft_in_hole =
+        pair_of(vec![cylinder(DVec3::ZERO, 3.0, span, 40.0, true), cylinder(DVec3::ZERO, 3.8, span, 40.0, false)]);
     assert_eq!(shaft_in_hole, Err(Rejection::NotFacing));
     let apart = pair_of(vec![
         cylinder(DVec3::ZERO, 3.0, span, 40.0, false),
@@ -232,37 +172,20 @@ fn cylinder_near_misses() {
 #[test]
 fn concentric_spheres() {
     let theta = (0.0, 1.0);
-    let p = pair_of(vec![
-        sphere(DVec3::ZERO, 20.0, theta, false),
-        sphere(DVec3::ZERO, 21.5, theta, true),
-    ])
-    .unwrap();
+    let p = pair_of(vec![sphere(DVec3::ZERO, 20.0, theta, false), sphere(DVec3::ZERO, 21.5, theta, true)]).unwrap();
     assert_eq!(p.kind, PairKind::Spherical);
     assert!((p.thickness.mean - 1.5).abs() < 1e-12);
-    let off = pair_of(vec![
-        sphere(DVec3::ZERO, 20.0, theta, false),
-        sphere(DVec3::X, 21.5, theta, true),
-    ]);
+    let off = pair_of(vec![sphere(DVec3::ZERO, 20.0, theta, false), sphere(DVec3::X, 21.5, theta, true)]);
     assert!(matches!(off, Err(Rejection::NotCoaxial { .. })));
 }
 
 #[test]
 fn tori_with_shared_axis_and_major_radius() {
-    let p = pair_of(vec![
-        torus(DVec3::ZERO, 30.0, 3.0, false),
-        torus(DVec3::ZERO, 30.0, 5.0, true),
-    ])
-    .unwrap();
+    let p = pair_of(vec![torus(DVec3::ZERO, 30.0, 3.0, false), torus(DVec3::ZERO, 30.0, 5.0, true)]).unwrap();
     assert_eq!(p.kind, PairKind::Toroidal);
     assert!((p.thickness.mean - 2.0).abs() < 1e-12);
-    let other_major = pair_of(vec![
-        torus(DVec3::ZERO, 30.0, 3.0, false),
-        torus(DVec3::ZERO, 31.0, 5.0, true),
-    ]);
-    assert!(
-        matches!(other_major, Err(Rejection::NotCoaxial { .. })),
-        "{other_major:?}"
-    );
+    let other_major = pair_of(vec![torus(DVec3::ZERO, 30.0, 3.0, false), torus(DVec3::ZERO, 31.0, 5.0, true)]);
+    assert!(matches!(other_major, Err(Rejection::NotCoaxial { .. })), "{other_major:?}");
 }
 
 #[test]
@@ -291,11 +214,7 @@ fn freeform_offset_sheets_pair_at_nearly_constant_distance() {
     let p = pair_of(vec![wavy(0.0, false), wavy(1.5, true)]).unwrap();
     assert_eq!(p.kind, PairKind::Freeform);
     // Vertical offset 1.5 of a sheet sloping up to atan(0.2) = 11.3 deg: normal distance 1.47..1.5.
-    assert!(
-        p.thickness.min > 1.4 && p.thickness.max < 1.55,
-        "{:?}",
-        p.thickness
-    );
+    assert!(p.thickness.min > 1.4 && p.thickness.max < 1.55, "{:?}", p.thickness);
 }
 
 #[test]
@@ -304,10 +223,7 @@ fn freeform_with_a_varying_gap_is_not_one_wall() {
         (DVec3::new(60.0 * u, 40.0 * v, 2.2), DVec3::Z)
     });
     let err = pair_of(vec![wavy(0.0, false), flat_top]).unwrap_err();
-    assert!(
-        matches!(err, Rejection::Spread { .. } | Rejection::Overlap { .. }),
-        "{err:?}"
-    );
+    assert!(matches!(err, Rejection::Spread { .. } | Rejection::Overlap { .. }), "{err:?}");
 }
 
 #[test]
@@ -316,10 +232,7 @@ fn plane_and_cylinder_cannot_pair() {
         rect(DVec3::ZERO, DVec3::Y * 4.0, DVec3::X * 4.0, -DVec3::Z),
         cylinder(DVec3::ZERO, 1.0, (0.0, 1.0), 1.0, true),
     ];
-    assert!(matches!(
-        pair_of(faces),
-        Err(Rejection::Incompatible { .. })
-    ));
+    assert!(matches!(pair_of(faces), Err(Rejection::Incompatible { .. })));
 }
 
 #[test]
@@ -329,11 +242,7 @@ fn plate_roles_skins_and_thickness_faces() {
     assert_eq!(pairing.pairs.len(), 1);
     assert_eq!(pairing.pairs[0].faces, [4, 5]);
     for f in 0..4 {
-        assert_eq!(
-            pairing.roles[f],
-            FaceRole::Thickness { group: 0 },
-            "face {f}"
-        );
+        assert_eq!(pairing.roles[f], FaceRole::Thickness { group: 0 }, "face {f}");
     }
     assert!(matches!(pairing.roles[4], FaceRole::Pair { group: 0, .. }));
     assert!((pairing.paired_area_share(&g) - 12000.0 / 12640.0).abs() < 1e-9);
@@ -348,13 +257,7 @@ fn suppressed_faces_do_not_pair_and_unpaired_faces_say_why() {
     assert!(pairing.pairs.is_empty());
     assert_eq!(pairing.roles[5], FaceRole::Suppressed);
     match &pairing.roles[0] {
-        FaceRole::Unpaired {
-            near_miss:
-                Some(NearMiss {
-                    rejection: Rejection::Angle { .. },
-                    ..
-                }),
-        } => {}
+        FaceRole::Unpaired { near_miss: Some(NearMiss { rejection: Rejection::Angle { .. }, .. }) } => {}
         other => panic!("{other:?}"),
     }
 }
@@ -364,46 +267,20 @@ fn connecting_face_between_two_walls() {
     // Two slabs side by side joined by a face touching one skin of each.
     let mut faces = slab_faces(2.0);
     faces.extend([
-        rect(
-            DVec3::new(100.0, 0.0, 0.0),
-            DVec3::Y * 40.0,
-            DVec3::X * 60.0,
-            -DVec3::Z,
-        ),
-        rect(
-            DVec3::new(100.0, 0.0, 2.0),
-            DVec3::X * 60.0,
-            DVec3::Y * 40.0,
-            DVec3::Z,
-        ),
-        rect(
-            DVec3::new(60.0, 0.0, 2.0),
-            DVec3::X * 40.0,
-            DVec3::Y * 40.0,
-            DVec3::Z * 1.0 + DVec3::X * 0.0,
-        ),
+        rect(DVec3::new(100.0, 0.0, 0.0), DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+        rect(DVec3::new(100.0, 0.0, 2.0), DVec3::X * 60.0, DVec3::Y * 40.0, DVec3::Z),
+        rect(DVec3::new(60.0, 0.0, 2.0), DVec3::X * 40.0, DVec3::Y * 40.0, DVec3::Z * 1.0 + DVec3::X * 0.0),
     ]);
-    let g = synthetic::graph(
-        faces,
-        &[(1, 4, Convexity::Smooth), (3, 4, Convexity::Smooth)],
-    );
+    let g = synthetic::graph(faces, &[(1, 4, Convexity::Smooth), (3, 4, Convexity::Smooth)]);
     let pairing = detect(&g, &tol(), &[true; 5]);
     assert_eq!(pairing.groups.len(), 2);
-    assert_eq!(
-        pairing.roles[4],
-        FaceRole::Connecting { groups: vec![0, 1] }
-    );
+    assert_eq!(pairing.roles[4], FaceRole::Connecting { groups: vec![0, 1] });
 }
 
 #[test]
 fn far_faces_are_not_even_candidates() {
     let mut faces = slab_faces(2.0);
-    faces.push(rect(
-        DVec3::new(500.0, 0.0, 0.0),
-        DVec3::X * 10.0,
-        DVec3::Y * 10.0,
-        DVec3::Z,
-    ));
+    faces.push(rect(DVec3::new(500.0, 0.0, 0.0), DVec3::X * 10.0, DVec3::Y * 10.0, DVec3::Z));
     let g = synthetic::graph(faces, &[]);
     assert_eq!(candidates::candidate_pairs(&g, T_MAX), vec![(0, 1)]);
 }

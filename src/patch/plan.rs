@@ -8,7 +8,7 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::face_graph::{FaceGraph, FaceId, Surface};
+use crate::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
 use crate::pairing::{Pair, PairKind, Pairing, Side, Thickness};
 use crate::patch::sides::top_sides;
 use crate::sidecar::protocol::Placement;
@@ -69,20 +69,35 @@ pub struct PatchPlan {
     /// of the top side like its neighbours'.
     #[serde(skip)]
     pub reverse: bool,
+    /// Edges of suppressed features on the reference faces: the inner loops holding them are filled.
+    #[serde(skip)]
+    pub fill: Vec<EdgeId>,
+    /// How many inner loops of the reference faces that fills.
+    #[serde(skip)]
+    pub fill_loops: usize,
+}
+
+impl PatchPlan {
+    /// Keeps the edges of `fill` (sorted) that lie on inner loops of the reference faces.
+    fn with_fill(mut self, graph: &FaceGraph, fill: &[EdgeId]) -> PatchPlan {
+        for &f in &self.faces {
+            for lp in graph.faces[f].loops.iter().skip(1) {
+                let on: Vec<EdgeId> = lp.iter().copied().filter(|e| fill.binary_search(e).is_ok()).collect();
+                if !on.is_empty() {
+                    self.fill.extend(on);
+                    self.fill_loops += 1;
+                }
+            }
+        }
+        self.fill.sort_unstable();
+        self.fill.dedup();
+        self
+    }
 }
 
 /// The other face of each pair of `face`, sorted.
 fn partners_of(face: FaceId, pairs: &[&Pair]) -> Vec<FaceId> {
-    let mut out: Vec<FaceId> = pairs
-        .iter()
-        .map(|p| {
-            if p.faces[0] == face {
-                p.faces[1]
-            } else {
-                p.faces[0]
-            }
-        })
-        .collect();
+    let mut out: Vec<FaceId> = pairs.iter().map(|p| if p.faces[0] == face { p.faces[1] } else { p.faces[0] }).collect();
     out.sort_unstable();
     out.dedup();
     out
@@ -92,23 +107,10 @@ fn partners_of(face: FaceId, pairs: &[&Pair]) -> Vec<FaceId> {
 const SAME_THICKNESS: f64 = 0.01;
 
 /// Each face of `side` with the pairs of the group it belongs to, by face id.
-fn pairs_per_face<'a>(
-    side: &[FaceId],
-    pairs: &[usize],
-    pairing: &'a Pairing,
-) -> Vec<(FaceId, Vec<&'a Pair>)> {
+fn pairs_per_face<'a>(side: &[FaceId], pairs: &[usize], pairing: &'a Pairing) -> Vec<(FaceId, Vec<&'a Pair>)> {
     let mut out: Vec<(FaceId, Vec<&Pair>)> = side
         .iter()
-        .map(|&f| {
-            (
-                f,
-                pairs
-                    .iter()
-                    .map(|&i| &pairing.pairs[i])
-                    .filter(|p| p.faces.contains(&f))
-                    .collect(),
-            )
-        })
+        .map(|&f| (f, pairs.iter().map(|&i| &pairing.pairs[i]).filter(|p| p.faces.contains(&f)).collect()))
         .collect();
     out.sort_by_key(|(f, _)| *f);
     out
@@ -126,17 +128,9 @@ fn uniform(per_face: &[(FaceId, Vec<&Pair>)]) -> bool {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub enum PlanNote {
     /// Both sides span a thickness step: offset at the mean.
-    ThicknessStep {
-        group: usize,
-        faces: Vec<FaceId>,
-        thickness: Thickness,
-    },
+    ThicknessStep { group: usize, faces: Vec<FaceId>, thickness: Thickness },
     /// Neither side is mostly covered by its partners: the patch overshoots the wall.
-    PartialOverlap {
-        group: usize,
-        faces: Vec<FaceId>,
-        coverage: f64,
-    },
+    PartialOverlap { group: usize, faces: Vec<FaceId>, coverage: f64 },
 }
 
 /// The larger side is kept as the reference while at least this share of it faces its partners.
@@ -151,12 +145,7 @@ fn choose_reference<'a>(
     group: &crate::pairing::PairGroup,
     pairing: &'a Pairing,
 ) -> (Side, Vec<(FaceId, Vec<&'a Pair>)>, Option<PlanNote>) {
-    let area = |side: usize| {
-        group.sides[side]
-            .iter()
-            .map(|&f| graph.faces[f].area)
-            .sum::<f64>()
-    };
+    let area = |side: usize| group.sides[side].iter().map(|&f| graph.faces[f].area).sum::<f64>();
     let coverage = |side: usize| (group.overlap_area / area(side)).min(1.0);
     let larger = group.reference as usize;
     let order = if coverage(larger) >= MIN_COVERAGE || coverage(larger) >= coverage(1 - larger) {
@@ -165,24 +154,12 @@ fn choose_reference<'a>(
         [1 - larger, larger]
     };
     let candidates = order.map(|side| pairs_per_face(&group.sides[side], &group.pairs, pairing));
-    let chosen = if uniform(&candidates[0]) || !uniform(&candidates[1]) {
-        0
-    } else {
-        1
-    };
+    let chosen = if uniform(&candidates[0]) || !uniform(&candidates[1]) { 0 } else { 1 };
     let side = order[chosen];
     let note = if !uniform(&candidates[chosen]) {
-        Some(PlanNote::ThicknessStep {
-            group: group.id,
-            faces: group.sides[side].clone(),
-            thickness: group.thickness,
-        })
+        Some(PlanNote::ThicknessStep { group: group.id, faces: group.sides[side].clone(), thickness: group.thickness })
     } else if coverage(side) < MIN_COVERAGE {
-        Some(PlanNote::PartialOverlap {
-            group: group.id,
-            faces: group.sides[side].clone(),
-            coverage: coverage(side),
-        })
+        Some(PlanNote::PartialOverlap { group: group.id, faces: group.sides[side].clone(), coverage: coverage(side) })
     } else {
         None
     };
@@ -191,10 +168,13 @@ fn choose_reference<'a>(
     (side, if chosen == 0 { first } else { second }, note)
 }
 
+/// The patches of one solid; `fill` (sorted) holds the edges of suppressed features, whose loops in the
+/// reference faces are filled.
 pub fn plan_patches(
     graph: &FaceGraph,
     pairing: &Pairing,
     position: Position,
+    fill: &[EdgeId],
 ) -> (Vec<PatchPlan>, Vec<PlanNote>) {
     let mut plans = Vec::new();
     let mut notes = Vec::new();
@@ -207,7 +187,7 @@ pub fn plan_patches(
         let on_top = top[group.id] == side;
         if group.kind == PairKind::Draft {
             for (face, pairs) in &per_face {
-                plans.push(draft_plan(graph, group.id, *face, pairs, position, on_top));
+                plans.push(draft_plan(graph, group.id, *face, pairs, position, on_top).with_fill(graph, fill));
             }
             continue;
         }
@@ -216,16 +196,9 @@ pub fn plan_patches(
         for (face, pairs) in &per_face {
             let t = combined(pairs);
             let partners = partners_of(*face, pairs);
-            match clusters
-                .iter_mut()
-                .find(|(ct, _, _)| (ct.mean - t.mean).abs() <= SAME_THICKNESS * ct.mean)
-            {
+            match clusters.iter_mut().find(|(ct, _, _)| (ct.mean - t.mean).abs() <= SAME_THICKNESS * ct.mean) {
                 Some((ct, faces, others)) => {
-                    *ct = Thickness {
-                        mean: ct.mean,
-                        min: ct.min.min(t.min),
-                        max: ct.max.max(t.max),
-                    };
+                    *ct = Thickness { mean: ct.mean, min: ct.min.min(t.min), max: ct.max.max(t.max) };
                     faces.push(*face);
                     others.push(partners);
                 }
@@ -233,16 +206,21 @@ pub fn plan_patches(
             }
         }
         for (thickness, faces, partners) in clusters {
-            plans.push(PatchPlan {
-                group: group.id,
-                kind: group.kind,
-                faces,
-                placement: Placement::Offset(position.offset(thickness.mean, on_top)),
-                thickness,
-                partners,
-                to_mid: position.to_mid(thickness.mean),
-                reverse: !on_top,
-            });
+            plans.push(
+                PatchPlan {
+                    group: group.id,
+                    kind: group.kind,
+                    faces,
+                    placement: Placement::Offset(position.offset(thickness.mean, on_top)),
+                    thickness,
+                    partners,
+                    to_mid: position.to_mid(thickness.mean),
+                    reverse: !on_top,
+                    fill: Vec::new(),
+                    fill_loops: 0,
+                }
+                .with_fill(graph, fill),
+            );
         }
     }
     (plans, notes)
@@ -252,14 +230,8 @@ pub fn plan_patches(
 /// `SAME_THICKNESS`; across a thickness step, the mean of the level with the most overlap (a mean of two
 /// levels would be mid-way on neither). The range covers all its pairs.
 fn combined(pairs: &[&Pair]) -> Thickness {
-    let min = pairs
-        .iter()
-        .map(|p| p.thickness.min)
-        .fold(f64::INFINITY, f64::min);
-    let max = pairs
-        .iter()
-        .map(|p| p.thickness.max)
-        .fold(f64::NEG_INFINITY, f64::max);
+    let min = pairs.iter().map(|p| p.thickness.min).fold(f64::INFINITY, f64::min);
+    let max = pairs.iter().map(|p| p.thickness.max).fold(f64::NEG_INFINITY, f64::max);
     let mut levels: Vec<(f64, f64)> = Vec::new(); // (sum of t x overlap, overlap)
     let mut sorted: Vec<&&Pair> = pairs.iter().collect();
     sorted.sort_by(|a, b| a.thickness.mean.total_cmp(&b.thickness.mean));
@@ -275,15 +247,9 @@ fn combined(pairs: &[&Pair]) -> Thickness {
         }
         last = t;
     }
-    let (sum, weight) = levels
-        .into_iter()
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .expect("a reference face belongs to at least one pair");
-    Thickness {
-        mean: sum / weight,
-        min,
-        max,
-    }
+    let (sum, weight) =
+        levels.into_iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("a reference face belongs to at least one pair");
+    Thickness { mean: sum / weight, min, max }
 }
 
 /// A draft face goes onto the exact bisector plane with its partner of largest overlap (or, on a skin, onto
@@ -300,11 +266,7 @@ fn draft_plan(
         .iter()
         .max_by(|a, b| a.overlap_area.total_cmp(&b.overlap_area))
         .expect("a reference face belongs to at least one pair");
-    let other = if main.faces[0] == face {
-        main.faces[1]
-    } else {
-        main.faces[0]
-    };
+    let other = if main.faces[0] == face { main.faces[1] } else { main.faces[0] };
     let plane = |f: FaceId| match graph.faces[f].surface {
         Surface::Plane { origin, normal } => (origin, normal),
         _ => unreachable!("draft pairs are made of planes"),
@@ -326,14 +288,13 @@ fn draft_plan(
         group,
         kind: PairKind::Draft,
         faces: vec![face],
-        placement: Placement::Plane {
-            origin: origin.to_array(),
-            normal: normal.to_array(),
-        },
+        placement: Placement::Plane { origin: origin.to_array(), normal: normal.to_array() },
         thickness,
         partners: vec![partners_of(face, pairs)],
         to_mid: position.to_mid(thickness.mean),
         reverse: !reference_on_top,
+        fill: Vec::new(),
+        fill_loops: 0,
     }
 }
 
@@ -372,7 +333,7 @@ mod tests {
     fn plate_offsets_its_larger_face_by_half_the_thickness() {
         let g = synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0));
         let pairing = detect(&g, &Tolerances::new(120.0, 3.0, 0.05), &[true; 6]);
-        let (plans, steps) = plan_patches(&g, &pairing, Position::Mid);
+        let (plans, steps) = plan_patches(&g, &pairing, Position::Mid, &[]);
         assert!(steps.is_empty());
         assert_eq!(plans.len(), 1);
         assert_eq!(plans[0].faces, vec![4]);
@@ -384,19 +345,12 @@ mod tests {
         let g = synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0));
         let pairing = detect(&g, &Tolerances::new(120.0, 3.0, 0.05), &[true; 6]);
         let placed = |position| {
-            let (plans, _) = plan_patches(&g, &pairing, position);
-            (
-                plans[0].placement.clone(),
-                plans[0].to_mid,
-                plans[0].thickness.mean,
-            )
+            let (plans, _) = plan_patches(&g, &pairing, position, &[]);
+            (plans[0].placement.clone(), plans[0].to_mid, plans[0].thickness.mean)
         };
         assert_eq!(placed(Position::Mid), (Placement::Offset(-1.0), 0.0, 2.0));
         assert_eq!(placed(Position::Top), (Placement::Offset(0.0), -1.0, 2.0));
-        assert_eq!(
-            placed(Position::Bottom),
-            (Placement::Offset(-2.0), 1.0, 2.0)
-        );
+        assert_eq!(placed(Position::Bottom), (Placement::Offset(-2.0), 1.0, 2.0));
     }
 
     #[test]
@@ -406,46 +360,23 @@ mod tests {
         let tilted = DVec3::new(a.cos(), 0.0, a.sin());
         let faces = vec![
             synthetic::rect(DVec3::ZERO, DVec3::Z * 20.0, DVec3::Y * 40.0, -DVec3::X),
-            synthetic::rect(
-                DVec3::X * 3.0,
-                DVec3::Y * 40.0,
-                DVec3::new(-a.sin(), 0.0, a.cos()) * 20.0,
-                tilted,
-            ),
+            synthetic::rect(DVec3::X * 3.0, DVec3::Y * 40.0, DVec3::new(-a.sin(), 0.0, a.cos()) * 20.0, tilted),
         ];
         let g = synthetic::graph(faces, &[]);
-        let pairing = detect(
-            &g,
-            &Tolerances::new(60.0, 4.0, 2.0_f64.to_radians()),
-            &[true; 2],
-        );
+        let pairing = detect(&g, &Tolerances::new(60.0, 4.0, 2.0_f64.to_radians()), &[true; 2]);
         let plane = |position| {
-            let (plans, _) = plan_patches(&g, &pairing, position);
+            let (plans, _) = plan_patches(&g, &pairing, position, &[]);
             let reference = plans[0].faces[0];
             match plans[0].placement {
-                Placement::Plane { origin, normal } => {
-                    (reference, DVec3::from(origin), DVec3::from(normal))
-                }
+                Placement::Plane { origin, normal } => (reference, DVec3::from(origin), DVec3::from(normal)),
                 Placement::Offset(_) => panic!("a draft pair is projected"),
             }
         };
         let (reference, origin, normal) = plane(Position::Top);
-        let Surface::Plane {
-            origin: ro,
-            normal: rn,
-        } = g.faces[reference].surface
-        else {
-            panic!()
-        };
+        let Surface::Plane { origin: ro, normal: rn } = g.faces[reference].surface else { panic!() };
         assert!(normal.distance(rn) < 1e-12 && (origin - ro).dot(rn).abs() < 1e-12);
         let (_, origin, normal) = plane(Position::Bottom);
-        let Surface::Plane {
-            origin: po,
-            normal: pn,
-        } = g.faces[1 - reference].surface
-        else {
-            panic!()
-        };
+        let Surface::Plane { origin: po, normal: pn } = g.faces[1 - reference].surface else { panic!() };
         assert!(normal.distance(-pn) < 1e-12 && (origin - po).dot(pn).abs() < 1e-12);
     }
 
@@ -455,33 +386,15 @@ mod tests {
         // tops (the reference side here, being larger) are offset each by its own half thickness.
         let faces = vec![
             synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 40.0, -DVec3::Z),
-            synthetic::rect(
-                DVec3::new(-5.0, 0.0, 2.0),
-                DVec3::X * 25.0,
-                DVec3::Y * 10.0,
-                DVec3::Z,
-            ),
-            synthetic::rect(
-                DVec3::new(20.0, 0.0, 3.0),
-                DVec3::X * 25.0,
-                DVec3::Y * 10.0,
-                DVec3::Z,
-            ),
+            synthetic::rect(DVec3::new(-5.0, 0.0, 2.0), DVec3::X * 25.0, DVec3::Y * 10.0, DVec3::Z),
+            synthetic::rect(DVec3::new(20.0, 0.0, 3.0), DVec3::X * 25.0, DVec3::Y * 10.0, DVec3::Z),
         ];
         let g = synthetic::graph(faces, &[]);
         let pairing = detect(&g, &Tolerances::new(60.0, 4.0, 0.05), &[true; 3]);
-        let (plans, _) = plan_patches(&g, &pairing, Position::Mid);
-        let offsets: Vec<(Vec<FaceId>, Placement)> = plans
-            .iter()
-            .map(|p| (p.faces.clone(), p.placement.clone()))
-            .collect();
-        assert_eq!(
-            offsets,
-            vec![
-                (vec![1], Placement::Offset(-1.0)),
-                (vec![2], Placement::Offset(-1.5))
-            ]
-        );
+        let (plans, _) = plan_patches(&g, &pairing, Position::Mid, &[]);
+        let offsets: Vec<(Vec<FaceId>, Placement)> =
+            plans.iter().map(|p| (p.faces.clone(), p.placement.clone())).collect();
+        assert_eq!(offsets, vec![(vec![1], Placement::Offset(-1.0)), (vec![2], Placement::Offset(-1.5))]);
     }
 
     #[test]
@@ -490,27 +403,13 @@ mod tests {
         // not, so each top is offset by its own half thickness.
         let faces = vec![
             synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 60.0, -DVec3::Z),
-            synthetic::rect(
-                DVec3::new(0.0, 0.0, 2.0),
-                DVec3::X * 25.0,
-                DVec3::Y * 10.0,
-                DVec3::Z,
-            ),
-            synthetic::rect(
-                DVec3::new(30.0, 0.0, 3.0),
-                DVec3::X * 25.0,
-                DVec3::Y * 10.0,
-                DVec3::Z,
-            ),
+            synthetic::rect(DVec3::new(0.0, 0.0, 2.0), DVec3::X * 25.0, DVec3::Y * 10.0, DVec3::Z),
+            synthetic::rect(DVec3::new(30.0, 0.0, 3.0), DVec3::X * 25.0, DVec3::Y * 10.0, DVec3::Z),
         ];
         let g = synthetic::graph(faces, &[]);
         let pairing = detect(&g, &Tolerances::new(70.0, 4.0, 0.05), &[true; 3]);
-        assert_eq!(
-            pairing.groups[0].reference,
-            crate::pairing::Side::A,
-            "the bottom is larger"
-        );
-        let (plans, steps) = plan_patches(&g, &pairing, Position::Mid);
+        assert_eq!(pairing.groups[0].reference, crate::pairing::Side::A, "the bottom is larger");
+        let (plans, steps) = plan_patches(&g, &pairing, Position::Mid, &[]);
         assert!(steps.is_empty());
         let offsets: Vec<f64> = plans
             .iter()
@@ -519,14 +418,8 @@ mod tests {
                 Placement::Plane { .. } => panic!("parallel pairs are offset"),
             })
             .collect();
-        assert_eq!(
-            plans.iter().map(|p| p.faces.clone()).collect::<Vec<_>>(),
-            vec![vec![1], vec![2]]
-        );
-        assert!(
-            (offsets[0] + 1.0).abs() < 1e-12 && (offsets[1] + 1.5).abs() < 1e-12,
-            "{offsets:?}"
-        );
+        assert_eq!(plans.iter().map(|p| p.faces.clone()).collect::<Vec<_>>(), vec![vec![1], vec![2]]);
+        assert!((offsets[0] + 1.0).abs() < 1e-12 && (offsets[1] + 1.5).abs() < 1e-12, "{offsets:?}");
     }
 
     #[test]
@@ -536,21 +429,16 @@ mod tests {
         let faces = |w: f64| {
             vec![
                 synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 100.0, -DVec3::Z),
-                synthetic::rect(
-                    DVec3::new(10.0, 0.0, 2.0),
-                    DVec3::X * w,
-                    DVec3::Y * 10.0,
-                    DVec3::Z,
-                ),
+                synthetic::rect(DVec3::new(10.0, 0.0, 2.0), DVec3::X * w, DVec3::Y * 10.0, DVec3::Z),
             ]
         };
         let tol = Tolerances::new(110.0, 3.0, 0.05);
         let g = synthetic::graph(faces(20.0), &[]);
-        let (plans, notes) = plan_patches(&g, &detect(&g, &tol, &[true; 2]), Position::Mid);
+        let (plans, notes) = plan_patches(&g, &detect(&g, &tol, &[true; 2]), Position::Mid, &[]);
         assert_eq!(plans[0].faces, vec![1]);
         assert!(notes.is_empty());
         let g = synthetic::graph(faces(60.0), &[]);
-        let (plans, _) = plan_patches(&g, &detect(&g, &tol, &[true; 2]), Position::Mid);
+        let (plans, _) = plan_patches(&g, &detect(&g, &tol, &[true; 2]), Position::Mid, &[]);
         assert_eq!(plans[0].faces, vec![0]);
     }
 }

@@ -22,14 +22,13 @@ fn skin(roles: &[FaceRole], face: FaceId) -> Option<(usize, Side)> {
 }
 
 /// Skins that run into each other, with the length of the edges between them: directly, or through a
-/// connecting face (a fillet between two walls) touching both. Keyed by ((g, X), (k, Y)) with g < k.
+/// connecting or suppressed face (a fillet between two walls) touching both. Keyed by ((g, X), (k, Y)) with g < k.
 fn links(graph: &FaceGraph, pairing: &Pairing) -> BTreeMap<((usize, Side), (usize, Side)), f64> {
     let roles = &pairing.roles;
     let mut out: BTreeMap<((usize, Side), (usize, Side)), f64> = BTreeMap::new();
     let mut add = |a: (usize, Side), b: (usize, Side), length: f64| {
         if a.0 != b.0 {
-            *out.entry(if a.0 < b.0 { (a, b) } else { (b, a) })
-                .or_insert(0.0) += length;
+            *out.entry(if a.0 < b.0 { (a, b) } else { (b, a) }).or_insert(0.0) += length;
         }
     };
     // Skins beside each connecting face, with the length they share with it.
@@ -41,9 +40,8 @@ fn links(graph: &FaceGraph, pairing: &Pairing) -> BTreeMap<((usize, Side), (usiz
                     (Some(a), Some(b)) => add(a, b, edge.length),
                     (Some(a), None) | (None, Some(a)) => {
                         let other = if skin(roles, f).is_some() { h } else { f };
-                        if matches!(roles[other], FaceRole::Connecting { .. }) {
-                            *beside.entry(other).or_default().entry(a).or_insert(0.0) +=
-                                edge.length;
+                        if matches!(roles[other], FaceRole::Connecting { .. } | FaceRole::Suppressed) {
+                            *beside.entry(other).or_default().entry(a).or_insert(0.0) += edge.length;
                         }
                     }
                     (None, None) => {}
@@ -88,12 +86,8 @@ fn bit(side: Side) -> u8 {
 /// from it the linked sides of the others. A group with no link keeps its reference side.
 pub fn top_sides(graph: &FaceGraph, pairing: &Pairing) -> Vec<Side> {
     let n = pairing.groups.len();
-    let mut forest = Parity {
-        parent: (0..n).collect(),
-        parity: vec![0; n],
-    };
-    let mut ordered: Vec<(((usize, Side), (usize, Side)), f64)> =
-        links(graph, pairing).into_iter().collect();
+    let mut forest = Parity { parent: (0..n).collect(), parity: vec![0; n] };
+    let mut ordered: Vec<(((usize, Side), (usize, Side)), f64)> = links(graph, pairing).into_iter().collect();
     // Longest first; the key order (group ids) breaks ties, so the result does not depend on the map.
     ordered.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
     for (((g, x), (k, y)), _) in ordered {
@@ -150,24 +144,11 @@ mod tests {
         // (inner, 3). The outer skins meet at the convex corner, the inner ones at the concave one.
         let faces = vec![
             synthetic::rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
-            synthetic::rect(
-                DVec3::new(2.0, 0.0, 2.0),
-                DVec3::X * 58.0,
-                DVec3::Y * 40.0,
-                DVec3::Z,
-            ),
+            synthetic::rect(DVec3::new(2.0, 0.0, 2.0), DVec3::X * 58.0, DVec3::Y * 40.0, DVec3::Z),
             synthetic::rect(DVec3::ZERO, DVec3::Z * 50.0, DVec3::Y * 40.0, -DVec3::X),
-            synthetic::rect(
-                DVec3::new(2.0, 0.0, 2.0),
-                DVec3::Y * 40.0,
-                DVec3::Z * 48.0,
-                DVec3::X,
-            ),
+            synthetic::rect(DVec3::new(2.0, 0.0, 2.0), DVec3::Y * 40.0, DVec3::Z * 48.0, DVec3::X),
         ];
-        let g = synthetic::graph(
-            faces,
-            &[(0, 2, Convexity::Convex), (1, 3, Convexity::Concave)],
-        );
+        let g = synthetic::graph(faces, &[(0, 2, Convexity::Convex), (1, 3, Convexity::Concave)]);
         let pairing = detect(&g, &Tolerances::new(80.0, 3.0, 0.05), &[true; 4]);
         assert_eq!(pairing.groups.len(), 2);
         let top = top_sides(&g, &pairing);

@@ -39,18 +39,12 @@ pub struct Branch {
 fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
     let ab = b - a;
     let len2 = ab.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
+    let t = if len2 > 0.0 { ((p - a).dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
     p.distance(a + ab * t)
 }
 
 fn distance_to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
-    line.windows(2)
-        .map(|w| distance_to_segment(p, w[0], w[1]))
-        .fold(f64::INFINITY, f64::min)
+    line.windows(2).map(|w| distance_to_segment(p, w[0], w[1])).fold(f64::INFINITY, f64::min)
 }
 
 /// The branches to drop; `limit[k]` is how far a branch may hang past patch k (see [`branch_limit`]).
@@ -74,12 +68,8 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
         let mut hanging = false;
         for &e in &face.edges {
             let edge = &fused.edges[e];
-            let others: Vec<usize> = edge
-                .faces
-                .iter()
-                .map(|&g| fused.faces[g].patch)
-                .filter(|&p| p != face.patch)
-                .collect();
+            let others: Vec<usize> =
+                edge.faces.iter().map(|&g| fused.faces[g].patch).filter(|&p| p != face.patch).collect();
             if !others.is_empty() {
                 crossing.extend(others);
                 lines.push(&edge.points);
@@ -118,30 +108,15 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             .edges
             .iter()
             .flat_map(|&e| fused.edges[e].points.iter())
-            .map(|&p| {
-                lines
-                    .iter()
-                    .map(|l| distance_to_polyline(p, l))
-                    .fold(f64::INFINITY, f64::min)
-            })
+            .map(|&p| lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min))
             .fold(0.0, f64::max);
         if width <= across {
-            candidates[i] = Some(Branch {
-                piece: i,
-                patch: face.patch,
-                area: face.area,
-                width,
-                crossing,
-            });
+            candidates[i] = Some(Branch { piece: i, patch: face.patch, area: face.area, width, crossing });
         }
     }
     // A narrow piece joined (through other narrow pieces) to a piece of its patch that is not narrow continues
     // the patch (a joint strip grown from its edge): only the rest hang past crossings.
-    let mut anchored: Vec<bool> = candidates
-        .iter()
-        .zip(&loose)
-        .map(|(c, &l)| c.is_none() && !l)
-        .collect();
+    let mut anchored: Vec<bool> = candidates.iter().zip(&loose).map(|(c, &l)| c.is_none() && !l).collect();
     let mut queue: Vec<usize> = (0..anchored.len()).filter(|&i| anchored[i]).collect();
     while let Some(i) = queue.pop() {
         for &j in &own_links[i] {
@@ -153,20 +128,11 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
     }
     for (i, face) in fused.faces.iter().enumerate() {
         if loose[i] && !anchored[i] {
-            candidates[i] = Some(Branch {
-                piece: i,
-                patch: face.patch,
-                area: face.area,
-                width: 0.0,
-                crossing: Vec::new(),
-            });
+            candidates[i] =
+                Some(Branch { piece: i, patch: face.patch, area: face.area, width: 0.0, crossing: Vec::new() });
         }
     }
-    candidates
-        .into_iter()
-        .zip(anchored)
-        .filter_map(|(c, a)| if a { None } else { c })
-        .collect()
+    candidates.into_iter().zip(anchored).filter_map(|(c, a)| if a { None } else { c }).collect()
 }
 
 /// Which pieces stay once `branches` are dropped.
@@ -215,21 +181,11 @@ mod tests {
     }
 
     fn face(patch: usize, area: f64, edges: Vec<usize>) -> FusedFace {
-        FusedFace {
-            patch,
-            area,
-            centroid: DVec3::ZERO,
-            normal: DVec3::Z,
-            edges,
-        }
+        FusedFace { patch, area, centroid: DVec3::ZERO, normal: DVec3::Z, edges }
     }
 
     fn edge(faces: Vec<usize>, a: DVec3, b: DVec3) -> FusedEdge {
-        FusedEdge {
-            length: a.distance(b),
-            faces,
-            points: (0..5).map(|k| a.lerp(b, k as f64 / 4.0)).collect(),
-        }
+        FusedEdge { length: a.distance(b), faces, points: (0..5).map(|k| a.lerp(b, k as f64 / 4.0)).collect() }
     }
 
     /// An L corner in the x-z section, 40 deep in y: the bottom patch (z = 1, x 0..60) crossed by the wall
@@ -279,10 +235,7 @@ mod tests {
     fn past_a_patch_on_a_skin_a_branch_may_hang_a_whole_thickness() {
         // The same 1 mm overshoot past walls 1.2 thick whose patches lie on a skin (0.6 off the middle).
         let limits: Vec<f64> = [1.2, 1.2].iter().map(|&t| branch_limit(t, 0.6)).collect();
-        let pieces: Vec<usize> = find_branches(&l_corner(), &limits)
-            .iter()
-            .map(|b| b.piece)
-            .collect();
+        let pieces: Vec<usize> = find_branches(&l_corner(), &limits).iter().map(|b| b.piece).collect();
         assert_eq!(pieces, vec![1, 3]);
     }
 
@@ -291,10 +244,7 @@ mod tests {
         // Piece 1 of patch 0 loses its free edge: only the crossing line and another crossing bound it.
         let mut fused = l_corner();
         fused.edges[2].faces = vec![1, 2];
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0]))
-            .iter()
-            .map(|b| b.piece)
-            .collect();
+        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
         assert_eq!(pieces, vec![3]);
     }
 
@@ -302,17 +252,10 @@ mod tests {
     fn a_strip_attached_to_its_patch_is_not_a_branch() {
         // Piece 1 of patch 0 also shares a free-standing edge with piece 0 (the edge it grew from).
         let mut fused = l_corner();
-        fused.edges.push(edge(
-            vec![0, 1],
-            DVec3::new(0.5, 0.0, 1.0),
-            DVec3::new(0.5, 40.0, 1.0),
-        ));
+        fused.edges.push(edge(vec![0, 1], DVec3::new(0.5, 0.0, 1.0), DVec3::new(0.5, 40.0, 1.0)));
         fused.faces[0].edges.push(5);
         fused.faces[1].edges.push(5);
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0]))
-            .iter()
-            .map(|b| b.piece)
-            .collect();
+        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
         assert_eq!(pieces, vec![3]);
     }
 
@@ -322,34 +265,16 @@ mod tests {
         let mut fused = l_corner();
         fused.faces.push(face(0, 1.0, vec![5, 6]));
         // (perimeter of its two listed edges 2, mean width 2 x 1 / 2 = 1 <= 0.75 x 2: overshoot-sized)
-        fused.edges.push(edge(
-            vec![1, 4],
-            DVec3::new(0.0, 40.0, 1.0),
-            DVec3::new(1.0, 40.0, 1.0),
-        ));
-        fused.edges.push(edge(
-            vec![4],
-            DVec3::new(0.0, 41.0, 1.0),
-            DVec3::new(1.0, 41.0, 1.0),
-        ));
+        fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
+        fused.edges.push(edge(vec![4], DVec3::new(0.0, 41.0, 1.0), DVec3::new(1.0, 41.0, 1.0)));
         fused.faces[1].edges.push(5);
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0]))
-            .iter()
-            .map(|b| b.piece)
-            .collect();
+        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
         assert_eq!(pieces, vec![1, 3, 4]);
         // Joined to the main piece instead (by an edge longer than the overshoot), it stays.
-        fused.edges[5] = edge(
-            vec![0, 4],
-            DVec3::new(1.0, 40.0, 1.0),
-            DVec3::new(3.0, 40.0, 1.0),
-        );
+        fused.edges[5] = edge(vec![0, 4], DVec3::new(1.0, 40.0, 1.0), DVec3::new(3.0, 40.0, 1.0));
         fused.faces[1].edges.pop();
         fused.faces[0].edges.push(5);
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0]))
-            .iter()
-            .map(|b| b.piece)
-            .collect();
+        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
         assert_eq!(pieces, vec![1, 3]);
     }
 
@@ -357,22 +282,11 @@ mod tests {
     fn a_large_piece_touching_no_other_patch_is_not_loose() {
         let mut fused = l_corner();
         fused.faces.push(face(0, 400.0, vec![5, 6]));
-        fused.edges.push(edge(
-            vec![1, 4],
-            DVec3::new(0.0, 40.0, 1.0),
-            DVec3::new(1.0, 40.0, 1.0),
-        ));
-        fused.edges.push(edge(
-            vec![4],
-            DVec3::new(0.0, 60.0, 1.0),
-            DVec3::new(20.0, 60.0, 1.0),
-        ));
+        fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
+        fused.edges.push(edge(vec![4], DVec3::new(0.0, 60.0, 1.0), DVec3::new(20.0, 60.0, 1.0)));
         fused.faces[1].edges.push(5);
         // It is part of the wall: it stays, and anchors the strip joined to it.
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0]))
-            .iter()
-            .map(|b| b.piece)
-            .collect();
+        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
         assert_eq!(pieces, vec![3]);
     }
 
@@ -380,30 +294,17 @@ mod tests {
     fn a_stub_shorter_than_the_overshoot_does_not_anchor() {
         // Piece 1 reaches past the end of the crossing line by a 0.3 stub shared with piece 0: still a branch.
         let mut fused = l_corner();
-        fused.edges.push(edge(
-            vec![0, 1],
-            DVec3::new(1.0, 40.0, 1.0),
-            DVec3::new(1.0, 40.3, 1.0),
-        ));
+        fused.edges.push(edge(vec![0, 1], DVec3::new(1.0, 40.0, 1.0), DVec3::new(1.0, 40.3, 1.0)));
         fused.faces[0].edges.push(5);
         fused.faces[1].edges.push(5);
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0]))
-            .iter()
-            .map(|b| b.piece)
-            .collect();
+        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
         assert_eq!(pieces, vec![1, 3]);
     }
 
     #[test]
     fn kept_pieces_group_into_shells() {
         let fused = l_corner();
-        assert_eq!(
-            connected_sets(&fused, &[true, false, true, false]),
-            vec![vec![0, 2]]
-        );
-        assert_eq!(
-            connected_sets(&fused, &[true, false, false, true]),
-            vec![vec![0, 3]]
-        );
+        assert_eq!(connected_sets(&fused, &[true, false, true, false]), vec![vec![0, 2]]);
+        assert_eq!(connected_sets(&fused, &[true, false, false, true]), vec![vec![0, 3]]);
     }
 }

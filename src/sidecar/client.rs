@@ -14,10 +14,7 @@ use super::{SidecarError, Transport, TransportError};
 /// longer on a cold disk; kernel ops on the largest real parts take seconds, so minutes mean a hang.
 /// `MIDSURF_TIMEOUT_SECS` replaces every figure (tests use it to provoke timeouts quickly).
 pub fn timeout_for(op: &str) -> Duration {
-    if let Some(secs) = std::env::var("MIDSURF_TIMEOUT_SECS")
-        .ok()
-        .and_then(|s| s.parse::<f64>().ok())
-    {
+    if let Some(secs) = std::env::var("MIDSURF_TIMEOUT_SECS").ok().and_then(|s| s.parse::<f64>().ok()) {
         return Duration::from_secs_f64(secs);
     }
     let secs = match op {
@@ -38,18 +35,9 @@ pub struct Client<T: Transport> {
 impl<T: Transport> Client<T> {
     /// Sends `hello` (always request id 0) and checks the protocol version.
     pub fn connect(transport: T) -> Result<Client<T>, SidecarError> {
-        let mut client = Client {
-            transport,
-            next_id: 0,
-            hello: Hello {
-                protocol: 0,
-                python: String::new(),
-                occt: String::new(),
-            },
-        };
-        let hello: Hello = client.call(&Request::Hello {
-            protocol: PROTOCOL_VERSION,
-        })?;
+        let mut client =
+            Client { transport, next_id: 0, hello: Hello { protocol: 0, python: String::new(), occt: String::new() } };
+        let hello: Hello = client.call(&Request::Hello { protocol: PROTOCOL_VERSION })?;
         if hello.protocol != PROTOCOL_VERSION {
             return Err(SidecarError::Op {
                 op: "hello".into(),
@@ -79,22 +67,15 @@ impl<T: Transport> Client<T> {
         let op = request.op();
         let id = self.next_id;
         self.next_id += 1;
-        let died = |t: &T| SidecarError::Died {
-            op: op.to_string(),
-            stderr: t.diagnostics(),
-        };
-        self.transport
-            .send(&protocol::encode(id, request))
-            .map_err(|_| died(&self.transport))?;
+        let died = |t: &T| SidecarError::Died { op: op.to_string(), stderr: t.diagnostics() };
+        self.transport.send(&protocol::encode(id, request)).map_err(|_| died(&self.transport))?;
         let after = timeout_for(op);
         match self.transport.recv(after) {
             Ok(line) => protocol::decode(id, op, &line),
             Err(TransportError::Closed) => Err(died(&self.transport)),
-            Err(TransportError::Timeout) => Err(SidecarError::Timeout {
-                op: op.to_string(),
-                after,
-                stderr: self.transport.diagnostics(),
-            }),
+            Err(TransportError::Timeout) => {
+                Err(SidecarError::Timeout { op: op.to_string(), after, stderr: self.transport.diagnostics() })
+            }
         }
     }
 }
@@ -108,10 +89,7 @@ pub struct Sidecar {
 
 impl Sidecar {
     pub fn start() -> Result<Sidecar, SidecarError> {
-        let mut sidecar = Sidecar {
-            launch: python::locate()?,
-            client: None,
-        };
+        let mut sidecar = Sidecar { launch: python::locate()?, client: None };
         sidecar.connected()?;
         Ok(sidecar)
     }
@@ -119,8 +97,7 @@ impl Sidecar {
     fn connected(&mut self) -> Result<&mut Client<ProcessTransport>, SidecarError> {
         if self.client.is_none() {
             let transport = ProcessTransport::spawn(&self.launch)?;
-            self.client =
-                Some(Client::connect(transport).map_err(|e| self.explain_start_failure(e))?);
+            self.client = Some(Client::connect(transport).map_err(|e| self.explain_start_failure(e))?);
         }
         Ok(self.client.as_mut().expect("client was just connected"))
     }
@@ -150,9 +127,7 @@ impl Sidecar {
         let result = self.connected()?.call(request);
         if matches!(
             result,
-            Err(SidecarError::Died { .. }
-                | SidecarError::Timeout { .. }
-                | SidecarError::BadReply { .. })
+            Err(SidecarError::Died { .. } | SidecarError::Timeout { .. } | SidecarError::BadReply { .. })
         ) {
             self.client = None;
         }
@@ -180,10 +155,7 @@ mod tests {
 
     impl Fake {
         fn new(replies: &[&str]) -> Fake {
-            Fake {
-                sent: Vec::new(),
-                replies: replies.iter().map(|r| Ok(r.to_string())).collect(),
-            }
+            Fake { sent: Vec::new(), replies: replies.iter().map(|r| Ok(r.to_string())).collect() }
         }
     }
 
@@ -193,9 +165,7 @@ mod tests {
             Ok(())
         }
         fn recv(&mut self, _timeout: Duration) -> Result<String, TransportError> {
-            self.replies
-                .pop_front()
-                .unwrap_or(Err(TransportError::Closed))
+            self.replies.pop_front().unwrap_or(Err(TransportError::Closed))
         }
         fn diagnostics(&self) -> String {
             "Traceback ...\nSegmentation fault".into()
@@ -213,10 +183,7 @@ mod tests {
         assert_eq!(pong, serde_json::json!({"pong": true}));
         assert_eq!(
             client.transport.sent,
-            [
-                r#"{"id":0,"op":"hello","args":{"protocol":2}}"#,
-                r#"{"id":1,"op":"ping","args":{}}"#
-            ]
+            [r#"{"id":0,"op":"hello","args":{"protocol":2}}"#, r#"{"id":1,"op":"ping","args":{}}"#]
         );
     }
 
@@ -241,16 +208,9 @@ mod tests {
     fn death_mid_request_names_the_op_and_keeps_stderr() {
         let fake = Fake::new(&[HELLO_OK]);
         let mut client = Client::connect(fake).unwrap();
-        let err = client
-            .call_value(&Request::LoadStep {
-                path: "a.step".into(),
-            })
-            .unwrap_err();
+        let err = client.call_value(&Request::LoadStep { path: "a.step".into() }).unwrap_err();
         assert!(matches!(&err, SidecarError::Died { op, .. } if op == "load_step"));
-        assert_eq!(
-            err.to_string(),
-            "the OCCT sidecar died during 'load_step' (sidecar stderr: Segmentation fault)"
-        );
+        assert_eq!(err.to_string(), "the OCCT sidecar died during 'load_step' (sidecar stderr: Segmentation fault)");
     }
 
     #[test]
@@ -258,13 +218,7 @@ mod tests {
         let mut fake = Fake::new(&[HELLO_OK]);
         fake.replies.push_back(Err(TransportError::Timeout));
         let mut client = Client::connect(fake).unwrap();
-        let err = client
-            .call_value(&Request::Describe {
-                handle: 1,
-                mesh: false,
-                mesh_tolerance: 0.1,
-            })
-            .unwrap_err();
+        let err = client.call_value(&Request::Describe { handle: 1, mesh: false, mesh_tolerance: 0.1 }).unwrap_err();
         assert!(matches!(&err, SidecarError::Timeout { op, .. } if op == "describe"));
     }
 
@@ -272,11 +226,7 @@ mod tests {
     fn reply_of_the_wrong_shape_is_a_protocol_error() {
         let fake = Fake::new(&[HELLO_OK, r#"{"id":1,"ok":{"solids":"many"}}"#]);
         let mut client = Client::connect(fake).unwrap();
-        let err = client
-            .call::<protocol::Loaded>(&Request::LoadStep {
-                path: "a.step".into(),
-            })
-            .unwrap_err();
+        let err = client.call::<protocol::Loaded>(&Request::LoadStep { path: "a.step".into() }).unwrap_err();
         assert!(matches!(err, SidecarError::BadReply { .. }));
     }
 }

@@ -16,25 +16,13 @@ pub enum SidecarError {
     /// The Python interpreter or the sidecar package could not be found or started.
     Spawn { why: String },
     /// The op ran and failed: the sidecar's own error code and message.
-    Op {
-        op: String,
-        code: String,
-        message: String,
-    },
+    Op { op: String, code: String, message: String },
     /// The process ended (crash, segfault, killed) while we waited for `op`.
     Died { op: String, stderr: String },
     /// No reply to `op` within its timeout; the process was killed.
-    Timeout {
-        op: String,
-        after: Duration,
-        stderr: String,
-    },
+    Timeout { op: String, after: Duration, stderr: String },
     /// A reply that does not follow the protocol.
-    BadReply {
-        op: String,
-        why: String,
-        line: String,
-    },
+    BadReply { op: String, why: String, line: String },
 }
 
 impl SidecarError {
@@ -63,11 +51,7 @@ impl fmt::Display for SidecarError {
             SidecarError::Spawn { why } => write!(f, "cannot start the OCCT sidecar: {why}"),
             SidecarError::Op { message, .. } => write!(f, "{message}"),
             SidecarError::Died { op, stderr } => {
-                write!(
-                    f,
-                    "the OCCT sidecar died during '{op}'{}",
-                    last_words(stderr)
-                )
+                write!(f, "the OCCT sidecar died during '{op}'{}", last_words(stderr))
             }
             SidecarError::Timeout { op, after, stderr } => write!(
                 f,
@@ -76,10 +60,7 @@ impl fmt::Display for SidecarError {
                 last_words(stderr)
             ),
             SidecarError::BadReply { op, why, line } => {
-                write!(
-                    f,
-                    "the OCCT sidecar broke the protocol during '{op}': {why}: {line}"
-                )
+                write!(f, "the OCCT sidecar broke the protocol during '{op}': {why}: {line}")
             }
         }
     }

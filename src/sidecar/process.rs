@@ -32,10 +32,7 @@ impl ProcessTransport {
             .stdout(Stdio::piped())
             .stderr(Stdio::piped());
         let mut child = command.spawn().map_err(|e| SidecarError::Spawn {
-            why: format!(
-                "{}: {e}; set MIDSURF_PYTHON or run scripts/setup",
-                launch.python.display()
-            ),
+            why: format!("{}: {e}; set MIDSURF_PYTHON or run scripts/setup", launch.python.display()),
         })?;
         let stdin = child.stdin.take().expect("stdin was configured as piped");
         let stdout = child.stdout.take().expect("stdout was configured as piped");
@@ -55,21 +52,14 @@ impl ProcessTransport {
         thread::spawn(move || {
             for line in BufReader::new(stderr_pipe).lines() {
                 let Ok(line) = line else { break };
-                let mut tail = tail
-                    .lock()
-                    .expect("stderr tail lock is never poisoned: no panics while held");
+                let mut tail = tail.lock().expect("stderr tail lock is never poisoned: no panics while held");
                 if tail.len() == STDERR_TAIL_LINES {
                     tail.pop_front();
                 }
                 tail.push_back(line);
             }
         });
-        Ok(ProcessTransport {
-            child,
-            stdin: Some(stdin),
-            lines,
-            stderr,
-        })
+        Ok(ProcessTransport { child, stdin: Some(stdin), lines, stderr })
     }
 
     /// Waits briefly for the stderr reader so that a dying child's last words make it into the error.
@@ -87,10 +77,7 @@ impl ProcessTransport {
 impl Transport for ProcessTransport {
     fn send(&mut self, line: &str) -> Result<(), TransportError> {
         let stdin = self.stdin.as_mut().ok_or(TransportError::Closed)?;
-        let sent = stdin
-            .write_all(line.as_bytes())
-            .and_then(|_| stdin.write_all(b"\n"))
-            .and_then(|_| stdin.flush());
+        let sent = stdin.write_all(line.as_bytes()).and_then(|_| stdin.write_all(b"\n")).and_then(|_| stdin.flush());
         sent.map_err(|_| TransportError::Closed)
     }
 
@@ -109,10 +96,7 @@ impl Transport for ProcessTransport {
     }
 
     fn diagnostics(&self) -> String {
-        let tail = self
-            .stderr
-            .lock()
-            .expect("stderr tail lock is never poisoned: no panics while held");
+        let tail = self.stderr.lock().expect("stderr tail lock is never poisoned: no panics while held");
         tail.iter().cloned().collect::<Vec<_>>().join("\n")
     }
 }

@@ -89,6 +89,9 @@ pub enum Request {
         /// Turn the new faces over (their normal then points into the source face's material).
         #[serde(skip_serializing_if = "std::ops::Not::not")]
         reverse: bool,
+        /// Solid edge ids of suppressed features: the inner loops of the faces holding them are filled first.
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        fill: Vec<usize>,
     },
     /// `split_internal`: split faces along joints that end inside them (for the final result only).
     Fuse {
@@ -167,13 +170,8 @@ pub fn encode(id: u64, request: &Request) -> String {
 
 /// Decodes a reply line for request `id`: the `ok` payload, or the sidecar's `err` as an error.
 pub fn decode(id: u64, op: &str, line: &str) -> Result<Value, SidecarError> {
-    let bad = |why: String| SidecarError::BadReply {
-        op: op.to_string(),
-        why,
-        line: clip(line),
-    };
-    let mut value: Value =
-        serde_json::from_str(line).map_err(|e| bad(format!("not JSON ({e})")))?;
+    let bad = |why: String| SidecarError::BadReply { op: op.to_string(), why, line: clip(line) };
+    let mut value: Value = serde_json::from_str(line).map_err(|e| bad(format!("not JSON ({e})")))?;
     let got = value.get("id").and_then(Value::as_u64);
     if got != Some(id) {
         return Err(bad(format!("reply id {got:?} for request {id}")));
@@ -184,16 +182,8 @@ pub fn decode(id: u64, op: &str, line: &str) -> Result<Value, SidecarError> {
     match value.get("err") {
         Some(err) => Err(SidecarError::Op {
             op: op.to_string(),
-            code: err
-                .get("code")
-                .and_then(Value::as_str)
-                .unwrap_or("unknown")
-                .to_string(),
-            message: err
-                .get("message")
-                .and_then(Value::as_str)
-                .unwrap_or("")
-                .to_string(),
+            code: err.get("code").and_then(Value::as_str).unwrap_or("unknown").to_string(),
+            message: err.get("message").and_then(Value::as_str).unwrap_or("").to_string(),
         }),
         None => Err(bad("neither ok nor err".to_string())),
     }
@@ -245,6 +235,9 @@ pub struct PatchFace {
 pub struct MadePatch {
     pub handle: u64,
     pub faces: Vec<PatchFace>,
+    /// Inner loops filled (those holding an edge of `fill`).
+    #[serde(default)]
+    pub filled: usize,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -332,23 +325,14 @@ mod tests {
     #[test]
     fn requests_encode_as_exact_json() {
         let cases = [
-            (
-                Request::Hello { protocol: 1 },
-                r#"{"id":0,"op":"hello","args":{"protocol":1}}"#,
-            ),
+            (Request::Hello { protocol: 1 }, r#"{"id":0,"op":"hello","args":{"protocol":1}}"#),
             (Request::Ping {}, r#"{"id":0,"op":"ping","args":{}}"#),
             (
-                Request::LoadStep {
-                    path: "/tmp/a b/ü.step".into(),
-                },
+                Request::LoadStep { path: "/tmp/a b/ü.step".into() },
                 r#"{"id":0,"op":"load_step","args":{"path":"/tmp/a b/ü.step"}}"#,
             ),
             (
-                Request::Describe {
-                    handle: 3,
-                    mesh: true,
-                    mesh_tolerance: 0.1,
-                },
+                Request::Describe { handle: 3, mesh: true, mesh_tolerance: 0.1 },
                 r#"{"id":0,"op":"describe","args":{"handle":3,"mesh":true,"mesh_tolerance":0.1}}"#,
             ),
             (
@@ -366,12 +350,7 @@ mod tests {
                 r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[{"face":0,"name":"patch 1 t=2.000","color":[1.0,0.5,0.0],"thickness":2.0}]}}"#,
             ),
             (
-                Request::WriteStep {
-                    path: "o.step".into(),
-                    handle: 7,
-                    faces: vec![],
-                    preview: Some("o.glb".into()),
-                },
+                Request::WriteStep { path: "o.step".into(), handle: 7, faces: vec![], preview: Some("o.glb".into()) },
                 r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"preview":"o.glb"}}"#,
             ),
             (
@@ -381,6 +360,7 @@ mod tests {
                     placement: Placement::Offset(-1.0),
                     clip: None,
                     reverse: false,
+                    fill: vec![],
                 },
                 r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[4,5],"offset":-1.0}}"#,
             ),
@@ -388,32 +368,19 @@ mod tests {
                 Request::MakePatch {
                     handle: 2,
                     faces: vec![7],
-                    placement: Placement::Plane {
-                        origin: [50.0, 0.0, 0.0],
-                        normal: [1.0, 0.0, 0.0],
-                    },
-                    clip: Some(Clip {
-                        partners: vec![vec![8, 9]],
-                        fuzzy: 0.001,
-                        narrow: 3.0,
-                    }),
+                    placement: Placement::Plane { origin: [50.0, 0.0, 0.0], normal: [1.0, 0.0, 0.0] },
+                    clip: Some(Clip { partners: vec![vec![8, 9]], fuzzy: 0.001, narrow: 3.0 }),
                     reverse: true,
+                    fill: vec![12, 13],
                 },
-                r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[7],"plane":{"origin":[50.0,0.0,0.0],"normal":[1.0,0.0,0.0]},"clip":{"partners":[[8,9]],"fuzzy":0.001,"narrow":3.0},"reverse":true}}"#,
+                r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[7],"plane":{"origin":[50.0,0.0,0.0],"normal":[1.0,0.0,0.0]},"clip":{"partners":[[8,9]],"fuzzy":0.001,"narrow":3.0},"reverse":true,"fill":[12,13]}}"#,
             ),
             (
-                Request::Fuse {
-                    patches: vec![3, 4],
-                    fuzzy: 0.001,
-                    split_internal: false,
-                },
+                Request::Fuse { patches: vec![3, 4], fuzzy: 0.001, split_internal: false },
                 r#"{"id":0,"op":"fuse","args":{"patches":[3,4],"fuzzy":0.001}}"#,
             ),
             (
-                Request::MakeShells {
-                    handle: 9,
-                    shells: vec![vec![0, 1], vec![2]],
-                },
+                Request::MakeShells { handle: 9, shells: vec![vec![0, 1], vec![2]] },
                 r#"{"id":0,"op":"make_shells","args":{"handle":9,"shells":[[0,1],[2]]}}"#,
             ),
             (
@@ -429,43 +396,20 @@ mod tests {
             (
                 Request::ExtendEdges {
                     handle: 9,
-                    strips: vec![StripRequest {
-                        edge: 4,
-                        face: 1,
-                        lengths: vec![1.0, 1.5],
-                    }],
+                    strips: vec![StripRequest { edge: 4, face: 1, lengths: vec![1.0, 1.5] }],
                     corners: vec![CornerRequest {
-                        points: [
-                            glam::DVec3::ZERO,
-                            glam::DVec3::X,
-                            glam::DVec3::ONE,
-                            glam::DVec3::Y,
-                        ],
+                        points: [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::ONE, glam::DVec3::Y],
                         normal: glam::DVec3::Z,
                     }],
                 },
                 r#"{"id":0,"op":"extend_edges","args":{"handle":9,"strips":[{"edge":4,"face":1,"lengths":[1.0,1.5]}],"corners":[{"points":[[0.0,0.0,0.0],[1.0,0.0,0.0],[1.0,1.0,1.0],[0.0,1.0,0.0]],"normal":[0.0,0.0,1.0]}]}}"#,
             ),
             (
-                Request::Gather {
-                    parts: vec![GatherPart {
-                        handle: 9,
-                        faces: vec![0, 2],
-                    }],
-                    unify: Some(0.001),
-                },
+                Request::Gather { parts: vec![GatherPart { handle: 9, faces: vec![0, 2] }], unify: Some(0.001) },
                 r#"{"id":0,"op":"gather","args":{"parts":[{"handle":9,"faces":[0,2]}],"unify":0.001}}"#,
             ),
-            (
-                Request::Free {
-                    handles: vec![1, 2],
-                },
-                r#"{"id":0,"op":"free","args":{"handles":[1,2]}}"#,
-            ),
-            (
-                Request::Shutdown {},
-                r#"{"id":0,"op":"shutdown","args":{}}"#,
-            ),
+            (Request::Free { handles: vec![1, 2] }, r#"{"id":0,"op":"free","args":{"handles":[1,2]}}"#),
+            (Request::Shutdown {}, r#"{"id":0,"op":"shutdown","args":{}}"#),
         ];
         for (request, json) in cases {
             assert_eq!(encode(0, &request), json, "{}", request.op());
@@ -474,35 +418,15 @@ mod tests {
 
     #[test]
     fn decode_ok_err_and_garbage() {
-        assert_eq!(
-            decode(4, "ping", r#"{"id":4,"ok":{"pong":true}}"#).unwrap(),
-            serde_json::json!({"pong":true})
-        );
-        let err = decode(
-            4,
-            "load_step",
-            r#"{"id":4,"err":{"code":"no_solid","message":"2 faces, no solid"}}"#,
-        )
-        .unwrap_err();
+        assert_eq!(decode(4, "ping", r#"{"id":4,"ok":{"pong":true}}"#).unwrap(), serde_json::json!({"pong":true}));
+        let err =
+            decode(4, "load_step", r#"{"id":4,"err":{"code":"no_solid","message":"2 faces, no solid"}}"#).unwrap_err();
         assert_eq!(
             err,
-            SidecarError::Op {
-                op: "load_step".into(),
-                code: "no_solid".into(),
-                message: "2 faces, no solid".into()
-            }
+            SidecarError::Op { op: "load_step".into(), code: "no_solid".into(), message: "2 faces, no solid".into() }
         );
-        assert!(matches!(
-            decode(4, "ping", "hello world"),
-            Err(SidecarError::BadReply { .. })
-        ));
-        assert!(matches!(
-            decode(4, "ping", r#"{"id":5,"ok":{}}"#),
-            Err(SidecarError::BadReply { .. })
-        ));
-        assert!(matches!(
-            decode(4, "ping", r#"{"id":4}"#),
-            Err(SidecarError::BadReply { .. })
-        ));
+        assert!(matches!(decode(4, "ping", "hello world"), Err(SidecarError::BadReply { .. })));
+        assert!(matches!(decode(4, "ping", r#"{"id":5,"ok":{}}"#), Err(SidecarError::BadReply { .. })));
+        assert!(matches!(decode(4, "ping", r#"{"id":4}"#), Err(SidecarError::BadReply { .. })));
     }
 }

@@ -31,12 +31,7 @@ pub fn project_root(env_root: Option<PathBuf>, exe: Option<PathBuf>) -> Option<P
     if let Some(root) = env_root {
         return holds_sidecar(&root).then_some(root);
     }
-    let from_exe = exe.and_then(|exe| {
-        exe.ancestors()
-            .skip(1)
-            .find(|d| holds_sidecar(d))
-            .map(Path::to_path_buf)
-    });
+    let from_exe = exe.and_then(|exe| exe.ancestors().skip(1).find(|d| holds_sidecar(d)).map(Path::to_path_buf));
     from_exe.or_else(|| {
         let built = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
         holds_sidecar(&built).then_some(built)
@@ -53,10 +48,7 @@ pub fn locate() -> Result<Launch, SidecarError> {
         },
     })?;
     let python = choose_python(std::env::var_os("MIDSURF_PYTHON").map(PathBuf::from), &root)?;
-    Ok(Launch {
-        python,
-        sidecar_dir: root.join("sidecar"),
-    })
+    Ok(Launch { python, sidecar_dir: root.join("sidecar") })
 }
 
 fn choose_python(env_python: Option<PathBuf>, root: &Path) -> Result<PathBuf, SidecarError> {
@@ -65,10 +57,7 @@ fn choose_python(env_python: Option<PathBuf>, root: &Path) -> Result<PathBuf, Si
             return Ok(python);
         }
         return Err(SidecarError::Spawn {
-            why: format!(
-                "MIDSURF_PYTHON={} is not a file; unset it or point it at a Python 3.11",
-                python.display()
-            ),
+            why: format!("MIDSURF_PYTHON={} is not a file; unset it or point it at a Python 3.11", python.display()),
         });
     }
     let venv = root.join(".venv/bin/python");
@@ -83,8 +72,7 @@ mod tests {
     use super::*;
 
     fn temp_project(name: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("midsurf-python-test-{name}-{}", std::process::id()));
+        let dir = std::env::temp_dir().join(format!("midsurf-python-test-{name}-{}", std::process::id()));
         std::fs::create_dir_all(dir.join("sidecar/midsurf_sidecar")).unwrap();
         std::fs::write(dir.join(PACKAGE_MARKER), "").unwrap();
         dir
@@ -112,10 +100,7 @@ mod tests {
         assert_eq!(choose_python(None, &dir).unwrap(), PathBuf::from("python3"));
         std::fs::create_dir_all(dir.join(".venv/bin")).unwrap();
         std::fs::write(dir.join(".venv/bin/python"), "").unwrap();
-        assert_eq!(
-            choose_python(None, &dir).unwrap(),
-            dir.join(".venv/bin/python")
-        );
+        assert_eq!(choose_python(None, &dir).unwrap(), dir.join(".venv/bin/python"));
         let env = dir.join(PACKAGE_MARKER);
         assert_eq!(choose_python(Some(env.clone()), &dir).unwrap(), env);
         assert!(choose_python(Some(dir.join("missing")), &dir).is_err());

@@ -1,0 +1,83 @@
+//! Issue 6: a fixture with small features, once they are suppressed, gives the mid-surface topology of its
+//! feature-free twin (the same summary but for the source face ids, which differ between the two solids),
+//! and its report lists the features.
+
+mod common;
+
+use common::{midsurf, outcome, scratch};
+use serde_json::Value;
+
+/// The topology summary with the source face ids left out, and the suppressed features as (kind, size).
+fn run(fixture: &str) -> (String, Vec<(String, f64)>) {
+    let dir = scratch(&format!("twins-{fixture}"));
+    let (out, summary, report) = (dir.join("mid.step"), dir.join("s.txt"), dir.join("r.json"));
+    let o = outcome(
+        midsurf()
+            .args(["run", &format!("fixtures/{fixture}.step"), "--no-timings", "-o"])
+            .arg(&out)
+            .arg("--summary")
+            .arg(&summary)
+            .arg("--report")
+            .arg(&report),
+    );
+    assert_eq!(o.code, 0, "{fixture}: {}", o.stderr);
+    let text = std::fs::read_to_string(&summary).unwrap();
+    let stripped: Vec<&str> = text.lines().map(|l| l.split(" source=").next().unwrap()).collect();
+    let report: Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let features = report["solids"][0]["suppressed"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| (f["kind"].as_str().unwrap().to_string(), (f["size"].as_f64().unwrap() * 100.0).round() / 100.0))
+        .collect();
+    (stripped.join("\n"), features)
+}
+
+fn same_as_twin(fixture: &str, twin: &str, features: &[(&str, f64)]) {
+    let (got, found) = run(fixture);
+    let (expected, none) = run(twin);
+    assert!(none.is_empty(), "{twin} has no features: {none:?}");
+    assert_eq!(got, expected, "{fixture} against {twin}");
+    let features: Vec<(String, f64)> = features.iter().map(|&(k, s)| (k.to_string(), s)).collect();
+    assert_eq!(found, features, "{fixture}");
+}
+
+#[test]
+fn root_fillets_of_a_rib_are_bridged() {
+    same_as_twin("t_rib_fillets", "t_rib", &[("fillet", 1.5), ("fillet", 1.5)]);
+}
+
+#[test]
+fn a_round_on_one_side_of_a_corner_is_bridged() {
+    same_as_twin("l_bracket_round", "l_bracket", &[("fillet", 1.0)]);
+}
+
+#[test]
+fn a_small_hole_is_filled_and_a_large_one_kept() {
+    same_as_twin("plate_holes", "plate_large_hole", &[("hole", 1.5)]);
+}
+
+#[test]
+fn a_boss_is_removed_and_its_footprint_filled() {
+    same_as_twin("plate_boss", "flat_plate", &[("boss", 9.38)]);
+}
+
+#[test]
+fn limits_from_the_command_line_keep_features() {
+    // --keep-holes and a boss limit under the boss's size leave both in the mid-surface's input.
+    let dir = scratch("twins-limits");
+    let report = dir.join("r.json");
+    for (fixture, flag) in [("plate_holes", vec!["--keep-holes"]), ("plate_boss", vec!["--boss-max", "9"])] {
+        let o = outcome(
+            midsurf()
+                .args(["run", &format!("fixtures/{fixture}.step"), "-o"])
+                .arg(dir.join("mid.step"))
+                .arg("--report")
+                .arg(&report)
+                .args(&flag),
+        );
+        assert!(o.code <= 1, "{fixture}: {}", o.stderr);
+        let report: Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        assert_eq!(report["solids"][0]["suppressed"], Value::Array(vec![]), "{fixture} {flag:?}");
+    }
+}
