@@ -263,6 +263,21 @@ fn suppressed_faces_do_not_pair_and_unpaired_faces_say_why() {
 }
 
 #[test]
+fn a_rim_face_beyond_a_suppressed_round_is_still_a_thickness_face() {
+    // A plate (faces 0, 1) whose end face 2 meets the bottom directly and the top through a round (3).
+    let faces = vec![
+        rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+        rect(DVec3::new(0.0, 0.0, 2.0), DVec3::X * 59.5, DVec3::Y * 40.0, DVec3::Z),
+        rect(DVec3::new(60.0, 0.0, 0.0), DVec3::Y * 40.0, DVec3::Z * 1.5, DVec3::X),
+        cylinder(DVec3::new(59.5, 0.0, 1.5), 0.5, (0.0, std::f64::consts::FRAC_PI_2), 40.0, true),
+    ];
+    let g = synthetic::graph(faces, &[(0, 2, Convexity::Convex), (2, 3, Convexity::Smooth), (1, 3, Convexity::Smooth)]);
+    let pairing = detect(&g, &tol(), &[true, true, true, false]);
+    assert_eq!(pairing.roles[2], FaceRole::Thickness { group: 0 });
+    assert_eq!(pairing.roles[3], FaceRole::Suppressed);
+}
+
+#[test]
 fn connecting_face_between_two_walls() {
     // Two slabs side by side joined by a face touching one skin of each.
     let mut faces = slab_faces(2.0);
