@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use serde::Serialize;
 
-use crate::face_graph::{FaceGraph, Surface};
+use crate::face_graph::{EdgeId, FaceGraph, Surface};
 use crate::features::{self, Feature, LimitArgs, Limits};
 use crate::pairing::estimate::{estimate_t_max, TMaxEstimate};
 use crate::pairing::{self, FaceRole, Pairing};
@@ -47,6 +47,14 @@ impl SolidPairing {
             .map(|f| f.size)
             .fold(0.0, f64::max);
         self.tolerances.clip_narrow + 2.0 * fillet
+    }
+
+    /// The edges whose loops the mid-patches fill (every suppressed hole's and boss's), sorted.
+    pub fn fill_edges(&self) -> Vec<EdgeId> {
+        let mut fill: Vec<EdgeId> = self.features.iter().flat_map(|f| f.fill.iter().copied()).collect();
+        fill.sort_unstable();
+        fill.dedup();
+        fill
     }
 }
 

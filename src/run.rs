@@ -58,10 +58,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
         warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
-        let mut fill: Vec<usize> = sp.features.iter().flat_map(|f| f.fill.iter().copied()).collect();
-        fill.sort_unstable();
-        fill.dedup();
-        let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &fill);
+        let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &sp.fill_edges());
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
             let request = Request::MakePatch {

@@ -35,12 +35,12 @@ class Clip:
 @dataclass(frozen=True)
 class Options:
     """`clip`: see Clip; `reverse`: turn every new face over (the wall's reference side is its bottom: the
-    patch normal then points out of the top side); `fill`: solid edge ids of suppressed features, whose inner
-    loops are removed from the source faces before they are offset or projected."""
+    patch normal then points out of the top side); `fill`: edges of the solid's suppressed features, whose
+    inner loops are removed from the source faces before they are offset or projected."""
 
     clip: Clip | None = None
     reverse: bool = False
-    fill: list[int] = field(default_factory=list)
+    fill: list[TopoDS_Shape] = field(default_factory=list)
 
 
 def offset_patch(
@@ -85,8 +85,6 @@ def _patch(
     """(compound of the new faces, the reply's `faces`: one entry per face made, several per source face when
     a clip splits it, inner loops filled); OpError `patch_failed` naming the face."""
     face_map: IndexedShapeMap = indexed_map(solid, TopAbs_FACE)
-    edge_map = indexed_map(solid, TopAbs_EDGE) if options.fill else None
-    fill_edges = [edge_map.FindKey(e + 1) for e in options.fill] if edge_map is not None else []
     clip = options.clip
     builder = BRep_Builder()
     compound = TopoDS_Compound()
@@ -96,8 +94,8 @@ def _patch(
     for k, face_id in enumerate(face_ids):
         try:
             source = TopoDS.Face(face_map.FindKey(face_id + 1))
-            if fill_edges:
-                source, removed = fill_loops(source, fill_edges)
+            if options.fill:
+                source, removed = fill_loops(source, options.fill)
                 filled += removed
             new_faces = [make(source)]
             if clip is not None and clip.partners[k]:

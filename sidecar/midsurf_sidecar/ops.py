@@ -7,7 +7,7 @@ from typing import Any
 import OCP
 from OCP.BRep import BRep_Builder
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
-from OCP.TopoDS import TopoDS, TopoDS_Compound
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 
 from . import edge_probe, edge_strip, face_graph, mid_patch, patch_fuse, patch_unify, shells, step_io
 from .args import (
@@ -69,9 +69,7 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     reverse = args.get("reverse", False)
     if not isinstance(reverse, bool):
         raise BadArgs("`reverse` must be true or false")
-    edge_count = indexed_map(solid, TopAbs_EDGE).Size()
-    fill = index_list(args.get("fill", []), edge_count, "fill edge", "the solid")
-    options = mid_patch.Options(clip, reverse, fill)
+    options = mid_patch.Options(clip, reverse, _fill_edges(solid, args))
     if "offset" in args:
         patch, faces, filled = mid_patch.offset_patch(solid, face_ids, require_number(args, "offset"), options)
     else:
@@ -79,6 +77,14 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         origin, normal = require_point(plane, "origin"), require_direction(plane, "normal")
         patch, faces, filled = mid_patch.projected_patch(solid, face_ids, origin, normal, options)
     return {"handle": store.put(patch), "faces": faces, "filled": filled}
+
+
+def _fill_edges(solid: TopoDS_Shape, args: dict[str, Any]) -> list[TopoDS_Shape]:
+    """The optional `fill`: edge ids of the solid, as edges (the solid's edges are indexed only when asked)."""
+    if "fill" not in args:
+        return []
+    edges = indexed_map(solid, TopAbs_EDGE)
+    return [edges.FindKey(e + 1) for e in index_list(args["fill"], edges.Size(), "fill edge", "the solid")]
 
 
 def _clip(args: dict[str, Any], count: int, faces: int) -> mid_patch.Clip | None:

@@ -27,14 +27,22 @@ pub enum Position {
 }
 
 impl Position {
-    /// Offset of the patch from its reference face along the face's outward normal, for a wall `t` thick whose
-    /// top side is the reference side (`reference_on_top`) or the other.
-    fn offset(self, t: f64, reference_on_top: bool) -> f64 {
+    /// On a skin: whether it is the reference face's own skin (true) or its partner's, for a wall whose top
+    /// side is the reference side (`reference_on_top`) or the other. None mid-way.
+    fn on_reference_skin(self, reference_on_top: bool) -> Option<bool> {
         match self {
-            Position::Mid => -0.5 * t,
-            Position::Top if reference_on_top => 0.0,
-            Position::Bottom if !reference_on_top => 0.0,
-            Position::Top | Position::Bottom => -t,
+            Position::Mid => None,
+            Position::Top => Some(reference_on_top),
+            Position::Bottom => Some(!reference_on_top),
+        }
+    }
+
+    /// Offset of the patch from its reference face along the face's outward normal, for a wall `t` thick.
+    fn offset(self, t: f64, reference_on_top: bool) -> f64 {
+        match self.on_reference_skin(reference_on_top) {
+            None => -0.5 * t,
+            Some(true) => 0.0,
+            Some(false) => -t,
         }
     }
 
@@ -273,15 +281,10 @@ fn draft_plan(
     };
     let (pa, na) = plane(face);
     let (pb, nb) = plane(other);
-    let on_reference_skin = match position {
-        Position::Top => reference_on_top,
-        Position::Bottom => !reference_on_top,
-        Position::Mid => false,
-    };
-    let (origin, normal) = match position {
-        Position::Mid => bisector(pa, na, pb, nb),
-        _ if on_reference_skin => (pa, na),
-        _ => (pb, -nb),
+    let (origin, normal) = match position.on_reference_skin(reference_on_top) {
+        None => bisector(pa, na, pb, nb),
+        Some(true) => (pa, na),
+        Some(false) => (pb, -nb),
     };
     let thickness = combined(pairs);
     PatchPlan {

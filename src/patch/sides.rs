@@ -67,14 +67,25 @@ struct Parity {
 }
 
 impl Parity {
+    /// The root of `x` and x's parity relative to it; the path is compressed on the way back, so chains of
+    /// links (one wall after another along a sheet) do not make later look-ups walk them again.
     fn root(&mut self, x: usize) -> (usize, u8) {
-        let mut parity = 0;
+        let mut path = Vec::new();
         let mut node = x;
         while self.parent[node] != node {
-            parity ^= self.parity[node];
+            path.push(node);
             node = self.parent[node];
         }
-        (node, parity)
+        let root = node;
+        // From the node nearest the root outwards, each node's parity to the root.
+        for &n in path.iter().rev() {
+            let parent = self.parent[n];
+            if parent != root {
+                self.parity[n] ^= self.parity[parent];
+            }
+            self.parent[n] = root;
+        }
+        (root, if x == root { 0 } else { self.parity[x] })
     }
 }
 
