@@ -108,8 +108,8 @@ pub struct PairingArgs {
     /// Largest draft angle of a wall side in degrees; draft pairs differ by up to twice this.
     #[arg(long, default_value_t = crate::tolerance::DEFAULT_DRAFT_MAX_DEG, value_parser = draft_degrees)]
     pub draft_max: f64,
-    /// Fillets and rounds up to this radius (mm) are suppressed: they do not pair, the joints bridge them
-    /// [default: 2 x t_max].
+    /// Fillets and rounds up to this radius, and chamfers up to this width (mm), are suppressed: they do not
+    /// pair, the joints bridge them [default: 2 x t_max].
     #[arg(long, value_parser = non_negative_mm)]
     pub fillet_max: Option<f64>,
     /// Holes up to this diameter (mm) are filled in the mid-surface [default: t_max].

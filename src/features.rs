@@ -5,6 +5,10 @@
 //! - A fillet or round: a cylinder or torus of radius <= `fillet_max` that did not pair and meets a wall skin
 //!   tangentially (a sheet's bend pairs with its other side, a plate's rounded outline corner joins only side
 //!   faces: neither is a fillet).
+//! - A chamfer: a plane face that did not pair, bevelled at a sharp angle against the two faces along its long
+//!   edges (both edges convex, or both concave at a root), one of them a wall skin, no wider than
+//!   `fillet_max`: a chamfer is a flat blend. A bevel between the two skins of one wall is that wall's rim
+//!   (a thickness face), not a chamfer.
 //! - A hole: an inner loop of a skin whose edges are all convex, opening onto coaxial concave cylinders of
 //!   one radius, diameter <= `hole_max`.
 //! - A boss, protrusion or tab: an inner loop of a skin whose edges are all concave (the CLoop of Lu, Gadh &
@@ -26,7 +30,7 @@ use crate::pairing::FaceRole;
 /// Size limits of the features to suppress, in mm.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Limits {
-    /// Largest fillet or round radius.
+    /// Largest fillet or round radius, and largest chamfer width.
     pub fillet_max: f64,
     /// Largest hole diameter.
     pub hole_max: f64,
@@ -65,6 +69,7 @@ impl LimitArgs {
 #[serde(rename_all = "snake_case")]
 pub enum FeatureKind {
     Fillet,
+    Chamfer,
     Hole,
     Boss,
 }
@@ -73,6 +78,7 @@ impl FeatureKind {
     pub fn name(self) -> &'static str {
         match self {
             FeatureKind::Fillet => "fillet",
+            FeatureKind::Chamfer => "chamfer",
             FeatureKind::Hole => "hole",
             FeatureKind::Boss => "boss",
         }
@@ -82,6 +88,7 @@ impl FeatureKind {
     pub fn size_name(self) -> &'static str {
         match self {
             FeatureKind::Fillet => "radius",
+            FeatureKind::Chamfer => "width",
             FeatureKind::Hole => "diameter",
             FeatureKind::Boss => "box diagonal",
         }
@@ -93,7 +100,7 @@ pub struct Feature {
     pub kind: FeatureKind,
     /// Its faces, sorted.
     pub faces: Vec<FaceId>,
-    /// Fillet radius, hole diameter or boss box diagonal (mm).
+    /// Fillet radius, chamfer width, hole diameter or boss box diagonal (mm).
     pub size: f64,
     /// Edges between the feature and the skins around it: the loops to fill in the mid-patches.
     #[serde(skip)]
@@ -171,6 +178,38 @@ fn hole_diameter(graph: &FaceGraph, region: &BTreeSet<FaceId>, tolerance: f64) -
     first.map(|(_, _, r)| 2.0 * r)
 }
 
+/// The width of `face` if it is a chamfer: a plane whose two longest edges are bevels of one kind (both
+/// convex or both concave, each turning by BEVEL degrees) onto two different faces, at least one a wall skin
+/// and not the two sides of one wall. The width is the area over the mean length of the two edges (exact for
+/// the trapezoid of a mitred chamfer).
+fn chamfer_width(graph: &FaceGraph, roles: &[FaceRole], face: FaceId) -> Option<f64> {
+    /// A turn under 10 degrees is a tangent blend or a facet, one over 80 a square rim or step.
+    const BEVEL: std::ops::RangeInclusive<f64> = 10.0..=80.0;
+    let f = &graph.faces[face];
+    if !matches!(f.surface, Surface::Plane { .. }) {
+        return None;
+    }
+    let mut edges: Vec<EdgeId> = f.loops.iter().flatten().copied().collect();
+    edges.sort_by(|&a, &b| graph.edges[b].length.total_cmp(&graph.edges[a].length).then(a.cmp(&b)));
+    let [a, b, ..] = edges[..] else { return None };
+    let neighbour = |e: EdgeId| {
+        let edge = &graph.edges[e];
+        let turn = edge.angle.abs().to_degrees();
+        let other = across(graph, e, face).next()?;
+        (BEVEL.contains(&turn) && edge.faces.len() == 2).then_some((other, edge.convexity))
+    };
+    let ((fa, ca), (fb, cb)) = (neighbour(a)?, neighbour(b)?);
+    let one_wall = match (&roles[fa], &roles[fb]) {
+        (FaceRole::Pair { group: ga, side: sa }, FaceRole::Pair { group: gb, side: sb }) => ga == gb && sa != sb,
+        _ => false,
+    };
+    let bevel = matches!(ca, Convexity::Convex | Convexity::Concave) && ca == cb;
+    if fa == fb || one_wall || !bevel || !(is_skin(&roles[fa]) || is_skin(&roles[fb])) {
+        return None;
+    }
+    Some(2.0 * f.area / (graph.edges[a].length + graph.edges[b].length))
+}
+
 /// Every small feature of a solid, given the roles of a first pairing with all faces pairable. `tolerance`
 /// says when two radii or axes are the same. Sorted by kind, then faces.
 pub fn recognise(graph: &FaceGraph, roles: &[FaceRole], limits: &Limits, tolerance: f64) -> Vec<Feature> {
@@ -220,6 +259,14 @@ pub fn recognise(graph: &FaceGraph, roles: &[FaceRole], limits: &Limits, toleran
         });
         if radius <= limits.fillet_max && tangent_to_skin {
             features.push(Feature { kind: FeatureKind::Fillet, faces: vec![face.id], size: radius, fill: Vec::new() });
+        }
+    }
+    for face in &graph.faces {
+        if taken.contains(&face.id) || is_skin(&roles[face.id]) {
+            continue;
+        }
+        if let Some(width) = chamfer_width(graph, roles, face.id).filter(|&w| w <= limits.fillet_max) {
+            features.push(Feature { kind: FeatureKind::Chamfer, faces: vec![face.id], size: width, fill: Vec::new() });
         }
     }
     features.sort_by(|a, b| a.kind.cmp(&b.kind).then(a.faces.cmp(&b.faces)));
@@ -322,6 +369,61 @@ mod tests {
         assert_eq!(found[0].fill, vec![0, 1]);
         let small = Limits { boss_max: 6.5, ..limits(false) };
         assert!(recognise(&g, &roles, &small, 1e-3).is_empty(), "its box is 6 x 0 x 3: diagonal 6.7");
+    }
+
+    /// A plate rim: top skin 0, bottom skin 1 (one wall), rim face 2, and a plane face 3 between the top
+    /// skin and the rim face along two 60 mm edges turning `turn` degrees (convex), 2 mm wide.
+    fn rim_with_bevel(turn: f64, onto_bottom: bool) -> (FaceGraph, Vec<FaceRole>) {
+        let rect = |o: DVec3, u: DVec3, v: DVec3, n: DVec3| synthetic::rect(o, u, v, n);
+        let faces = vec![
+            rect(DVec3::ZERO, DVec3::X * 100.0, DVec3::Y * 60.0, DVec3::Z),
+            rect(DVec3::ZERO, DVec3::X * 100.0, DVec3::Y * 60.0, -DVec3::Z),
+            rect(DVec3::ZERO, DVec3::Z * 2.0, DVec3::Y * 60.0, -DVec3::X),
+            rect(DVec3::ZERO, DVec3::X * 2.0, DVec3::Y * 60.0, DVec3::Z),
+        ];
+        let mut g = synthetic::graph(faces, &[]);
+        let edge = |id: usize, faces: Vec<usize>, length: f64| Edge {
+            id,
+            vertices: [0, 0],
+            faces,
+            convexity: Convexity::Convex,
+            angle: turn.to_radians(),
+            length,
+            curve: "line".into(),
+            midpoint: DVec3::ZERO,
+        };
+        let far = if onto_bottom { 1 } else { 2 };
+        g.edges = vec![edge(0, vec![3, 0], 60.0), edge(1, vec![3, far], 60.0), edge(2, vec![3, 2], 2.0)];
+        g.faces[3].loops = vec![vec![0, 2, 1, 2]];
+        g.faces[3].area = 120.0;
+        let roles = vec![
+            FaceRole::Pair { group: 0, side: Side::A },
+            FaceRole::Pair { group: 0, side: Side::B },
+            FaceRole::Thickness { group: 0 },
+            FaceRole::Thickness { group: 0 },
+        ];
+        (g, roles)
+    }
+
+    #[test]
+    fn a_narrow_bevel_between_a_skin_and_a_rim_is_a_chamfer() {
+        let (g, roles) = rim_with_bevel(45.0, false);
+        let found = recognise(&g, &roles, &limits(false), 1e-3);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!((found[0].kind, found[0].faces.clone(), found[0].size), (FeatureKind::Chamfer, vec![3], 2.0));
+        let narrow = Limits { fillet_max: 1.9, ..limits(false) };
+        assert!(recognise(&g, &roles, &narrow, 1e-3).is_empty(), "2 mm wide over a 1.9 mm limit");
+    }
+
+    #[test]
+    fn square_rims_tangent_facets_and_bevelled_wall_ends_are_no_chamfers() {
+        for turn in [90.0, 5.0] {
+            let (g, roles) = rim_with_bevel(turn, false);
+            assert!(recognise(&g, &roles, &limits(false), 1e-3).is_empty(), "turning {turn} degrees");
+        }
+        // Between the two skins of one wall the bevel is the wall's rim.
+        let (g, roles) = rim_with_bevel(45.0, true);
+        assert!(recognise(&g, &roles, &limits(false), 1e-3).is_empty());
     }
 
     #[test]

@@ -38,12 +38,13 @@ pub struct SolidPairing {
 
 impl SolidPairing {
     /// Widest uncovered band a clipped mid-patch keeps (see `Tolerances::clip_narrow`): under a crossing wall
-    /// the band also spans the suppressed fillets at the wall's root, up to twice the largest radius.
+    /// the band also spans the suppressed blends at the wall's root, up to twice the largest fillet radius or
+    /// chamfer width (a chamfer's footprint is no wider than the chamfer).
     pub fn clip_narrow(&self) -> f64 {
         let fillet = self
             .features
             .iter()
-            .filter(|f| f.kind == features::FeatureKind::Fillet)
+            .filter(|f| matches!(f.kind, features::FeatureKind::Fillet | features::FeatureKind::Chamfer))
             .map(|f| f.size)
             .fold(0.0, f64::max);
         self.tolerances.clip_narrow + 2.0 * fillet

@@ -53,6 +53,14 @@ fn a_round_on_one_side_of_a_corner_is_bridged() {
 }
 
 #[test]
+fn chamfers_on_a_rim_at_a_corner_and_at_a_rib_root_are_bridged() {
+    let rim = [("chamfer", 1.41); 4];
+    same_as_twin("plate_chamfers", "flat_plate", &rim);
+    same_as_twin("l_bracket_chamfer", "l_bracket", &[("chamfer", 1.41)]);
+    same_as_twin("t_rib_chamfers", "t_rib", &[("chamfer", 2.12), ("chamfer", 2.12)]);
+}
+
+#[test]
 fn a_small_hole_is_filled_and_a_large_one_kept() {
     same_as_twin("plate_holes", "plate_large_hole", &[("hole", 1.5)]);
 }
