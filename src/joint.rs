@@ -10,6 +10,10 @@
 //!
 //! Every strip overshoots its partner by [`OVERSHOOT`] of the partner's thickness so the fuse always finds a
 //! crossing; the overshoot is then a branch under the trimming limit (0.75 t) and is dropped.
+//!
+//! A free edge with no partner may still stop short of the part's boundary: a wall's end rounded on both
+//! sides (suppressed rounds) leaves its skins, and so its patch, up to half a thickness inside the rim. Such
+//! an edge grows to the boundary, measured at mid-wall ([`rim_shortfall`]), with no overshoot.
 
 use std::collections::BTreeMap;
 
@@ -24,6 +28,10 @@ pub const OVERSHOOT: f64 = 0.25;
 pub const PROBE_STEP: f64 = 0.25;
 /// Samples per free edge (ends included): enough to follow a curved edge or a tilted partner.
 pub const SAMPLES: usize = 5;
+/// Farthest a free edge with no partner grows to the part's boundary, as a share of its patch thickness (plus
+/// the rim tolerance, for the meshes' chords): a wall's end rounded on both sides lies at most half a thickness
+/// past its skins' edges (a full round). Farther material is another wall or a block, not the rim.
+pub const RIM_REACH: f64 = 0.5;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 pub enum JointKind {
@@ -31,6 +39,8 @@ pub enum JointKind {
     T,
     /// The edge meets the partner's support past its boundary: both grow and cross.
     L,
+    /// No partner: the edge grows to the part's boundary.
+    Rim,
 }
 
 impl JointKind {
@@ -39,6 +49,7 @@ impl JointKind {
         match self {
             JointKind::T => "t",
             JointKind::L => "l",
+            JointKind::Rim => "rim",
         }
     }
 }
@@ -118,6 +129,34 @@ pub fn decide(
     Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached) })
 }
 
+/// How far past its samples a free edge with no partner must grow to reach the part's boundary, or None when
+/// it is on the rim already (median shortfall <= `on_rim`) or most samples are not inside the material with
+/// the boundary within reach. Each sample is first moved `to_mid` along the patch normal to the middle of the wall; `exit(q, d)`
+/// is the distance from q, inside the material, along d to the boundary, if within `reach`.
+pub fn rim_shortfall(
+    probe: &EdgeProbe,
+    to_mid: f64,
+    on_rim: f64,
+    contains: impl Fn(DVec3) -> bool,
+    exit: impl Fn(DVec3, DVec3) -> Option<f64>,
+) -> Option<Vec<f64>> {
+    let shortfall: Vec<Option<f64>> = (0..probe.points.len())
+        .map(|k| {
+            let q = probe.points[k] + probe.normals[k] * to_mid;
+            // A sample on the boundary (an end of the edge at a rim) tells nothing: it takes its neighbours'.
+            contains(q).then(|| exit(q, probe.outward[k])).flatten()
+        })
+        .collect();
+    let mut known: Vec<f64> = shortfall.iter().flatten().copied().collect();
+    if 2 * known.len() <= shortfall.len() {
+        return None;
+    }
+    known.sort_by(f64::total_cmp);
+    // A strip needs a positive length at every sample: where the edge touches the boundary it overshoots by a
+    // sliver far inside the rim tolerance.
+    (known[known.len() / 2] > on_rim).then(|| fill_gaps(&shortfall).into_iter().map(|d| d.max(0.5 * on_rim)).collect())
+}
+
 /// Missing values linearly interpolated between their known neighbours, held constant past the ends.
 fn fill_gaps(values: &[Option<f64>]) -> Vec<f64> {
     let known: Vec<(usize, f64)> = values.iter().enumerate().filter_map(|(i, v)| v.map(|v| (i, v))).collect();
@@ -128,7 +167,7 @@ fn fill_gaps(values: &[Option<f64>]) -> Vec<f64> {
             match (before, after) {
                 (Some(&(a, va)), Some(&(b, vb))) if b > a => va + (vb - va) * (i - a) as f64 / (b - a) as f64,
                 (Some(&(_, v)), _) | (None, Some(&(_, v))) => v,
-                (None, None) => unreachable!("decide only fills edges with at least one meeting"),
+                (None, None) => unreachable!("only edges with at least one known value are filled"),
             }
         })
         .collect()
@@ -214,6 +253,26 @@ mod tests {
         assert_eq!(e.partner, 1);
         // Sample 2's best meeting is patch 2's support (0.5 + gap 2 = 2.5 > 2.0): patch 1 there too.
         assert_eq!(e.lengths, vec![1.25, 1.75, 2.25, 3.25, 3.25]);
+    }
+
+    #[test]
+    fn an_edge_short_of_the_boundary_grows_to_it_and_one_on_it_stays() {
+        // Edge along x at z = 11.5 in a rib whose top is at z = 12 (rounded edges); outward +z.
+        let mut p = probe(vec![vec![]; 3]);
+        p.points = (0..3).map(|k| DVec3::new(k as f64, 0.0, 11.5)).collect();
+        p.outward = vec![DVec3::Z; 3];
+        let contains = |q: DVec3| q.z < 12.0;
+        let exit = |q: DVec3, d: DVec3| Some((12.0 - q.z) / d.z).filter(|&t| t <= 1.5);
+        assert_eq!(rim_shortfall(&p, 0.0, 0.2, contains, exit), Some(vec![0.5; 3]));
+        // One end on a boundary (a corner of the rim): a sliver there, never zero.
+        let corner = |q: DVec3, d: DVec3| if q.x > 1.5 { Some(0.0) } else { exit(q, d) };
+        assert_eq!(rim_shortfall(&p, 0.0, 0.2, contains, corner), Some(vec![0.5, 0.5, 0.1]));
+        assert_eq!(rim_shortfall(&p, 0.0, 0.6, contains, exit), None, "0.5 short counts as on the rim");
+        p.points.iter_mut().for_each(|q| q.z = 12.0);
+        assert_eq!(rim_shortfall(&p, 0.0, 0.2, contains, exit), None, "on the boundary");
+        // Material on past the reach (another wall): no rim to grow to.
+        p.points.iter_mut().for_each(|q| q.z = 5.0);
+        assert_eq!(rim_shortfall(&p, 0.0, 0.2, contains, exit), None);
     }
 
     #[test]

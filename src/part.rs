@@ -11,6 +11,8 @@ use crate::sidecar::{Sidecar, SidecarError};
 pub struct Solid {
     pub handle: u64,
     pub graph: FaceGraph,
+    /// Chordal tolerance of the graph's face meshes (mm).
+    pub mesh_tolerance: f64,
 }
 
 pub struct Part {
@@ -74,7 +76,7 @@ pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Par
         if !problems.is_empty() {
             return Err(Error::input(path, format!("inconsistent face graph: {}", problems.join("; "))));
         }
-        solids.push(Solid { handle: solid.handle, graph });
+        solids.push(Solid { handle: solid.handle, graph, mesh_tolerance });
     }
     Ok(Part { path: path.to_path_buf(), solids })
 }

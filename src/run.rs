@@ -119,6 +119,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
                 to_mid: m.plan.to_mid,
                 solid: m.solid - 1,
                 reach: tolerances.joint_reach + skin,
+                on_rim: crate::tolerance::on_rim(m.plan.thickness.mean, part.solids[m.solid - 1].mesh_tolerance),
             }
         })
         .collect();

@@ -22,6 +22,8 @@ pub struct PatchInfo {
     pub to_mid: f64,
     pub solid: usize,
     pub reach: f64,
+    /// A free edge closer than this to the boundary is on the rim (`tolerance::on_rim`).
+    pub on_rim: f64,
 }
 
 /// The joints made between two patches (or tried from one), summed over their edges.
@@ -94,8 +96,64 @@ fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], so
     joint::is_open(probe, joint::PROBE_STEP * patch.thickness, patch.to_mid, |q| solids[patch.solid].contains(q))
 }
 
+/// How far the free edge `edge` of `face` must grow to reach the part's boundary (see
+/// `joint::rim_shortfall`). Only straight edges: a strip grown from a curved edge of a curved patch (a tube's
+/// end) is a ruled face off the patch's surface, and fusing it broke the patch it touched (salome_pipe).
+fn to_rim(
+    fused: &Fused,
+    edge: usize,
+    face: usize,
+    probe: &EdgeProbe,
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+) -> Option<Vec<f64>> {
+    let points = &fused.edges[edge].points;
+    let chord = match (points.first(), points.last()) {
+        (Some(a), Some(b)) => a.distance(*b),
+        _ => 0.0,
+    };
+    if chord < STRAIGHT * fused.edges[edge].length {
+        return None;
+    }
+    shortfall(fused, face, probe, patches, solids)
+}
+
+/// How far the free edge of `face` stops short of the part's boundary, if it does (`joint::rim_shortfall`).
+fn shortfall(
+    fused: &Fused,
+    face: usize,
+    probe: &EdgeProbe,
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+) -> Option<Vec<f64>> {
+    let patch = &patches[fused.faces[face].patch];
+    let solid = &solids[patch.solid];
+    let reach = joint::RIM_REACH * patch.thickness + patch.on_rim;
+    joint::rim_shortfall(
+        probe,
+        patch.to_mid,
+        patch.on_rim,
+        |q| solid.contains(q),
+        |q, d| solid.exit(q, d.normalize_or_zero(), reach),
+    )
+}
+
+/// An edge whose chord is this share of its length is straight.
+const STRAIGHT: f64 = 0.999;
+
+/// Which free edges a pass grows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Pass {
+    /// Every free edge: joints to partner patches, and edges short of the rim.
+    Joints,
+    /// The free edges left by the joints (an L-joint's overshoot that stayed joined to its patch past a wall's
+    /// end, for one), grown to the rim when it is within reach.
+    Rims,
+}
+
 /// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again (also without any
-/// extension: the final fuse splits faces along joints that end inside them).
+/// extension: the final fuse splits faces along joints that end inside them). When edges are still open after
+/// that, one more pass grows the free edges that stop short of the rim.
 pub fn stitch(
     sidecar: &mut Sidecar,
     fused: &Fused,
@@ -104,22 +162,65 @@ pub fn stitch(
     solids: &[SolidMesh],
     fuzzy: f64,
 ) -> Result<Stitched, SidecarError> {
+    let mut tally = JointTally::default();
+    let (mut fused, mut keep, mut branches) =
+        grow(sidecar, fused, keep, patches, solids, fuzzy, Pass::Joints, &mut tally)?.expect("the joints pass fuses");
+    let mut free = classify_free(sidecar, &fused, &keep, patches, solids)?;
+    if free.open_edges > 0 {
+        if let Some((again, again_keep, more)) =
+            grow(sidecar, &fused, &keep, patches, solids, fuzzy, Pass::Rims, &mut tally)?
+        {
+            (fused, keep) = (again, again_keep);
+            branches.extend(more);
+            free = classify_free(sidecar, &fused, &keep, patches, solids)?;
+        }
+    }
+    Ok(Stitched { fused, keep, branches, joints: tally.reports(), free })
+}
+
+/// One pass of `stitch`: the result fused again, its kept pieces and the branches dropped; None when a rims
+/// pass finds nothing to grow.
+#[allow(clippy::too_many_arguments)]
+fn grow(
+    sidecar: &mut Sidecar,
+    fused: &Fused,
+    keep: &[bool],
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+    fuzzy: f64,
+    pass: Pass,
+    tally: &mut JointTally,
+) -> Result<Option<(Fused, Vec<bool>, Vec<Branch>)>, SidecarError> {
     let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
     let patch_of: Vec<usize> = fused.faces.iter().map(|f| f.patch).collect();
     let free = free_edges(fused, keep);
     let kept: Vec<usize> = (0..fused.faces.len()).filter(|&f| keep[f]).collect();
-    let probes = probe(sidecar, fused, &free, kept.clone(), patches)?;
+    // A rims pass needs no meetings with other patches.
+    let targets = if pass == Pass::Joints { kept.clone() } else { Vec::new() };
+    let probes = probe(sidecar, fused, &free, targets, patches)?;
 
     // (patch, strip, joint key, probe) per extended edge; joint keys of the edges with no partner.
     let mut planned: Vec<(usize, StripRequest, JointKey, &EdgeProbe)> = Vec::new();
-    let mut tally = JointTally::default();
     for (&(edge, face), p) in free.iter().zip(&probes) {
         let patch = patch_of[face];
         let length = fused.edges[edge].length;
         let open = open(fused, face, p, patches, solids);
-        match joint::decide(patch, open, p, &patch_of, &thickness, patches[patch].reach) {
-            Verdict::Rim => {}
-            Verdict::Unresolved => tally.add((vec![patch + 1], "none", "no_partner"), length),
+        let verdict = match pass {
+            Pass::Joints => joint::decide(patch, open, p, &patch_of, &thickness, patches[patch].reach),
+            // Only growth to the rim; an edge that found no partner before is not counted again.
+            Pass::Rims => Verdict::Rim,
+        };
+        match verdict {
+            verdict @ (Verdict::Rim | Verdict::Unresolved) => match to_rim(fused, edge, face, p, patches, solids) {
+                Some(lengths) => planned.push((
+                    patch,
+                    StripRequest { edge, face, lengths },
+                    (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
+                    p,
+                )),
+                None if verdict == Verdict::Unresolved => tally.add((vec![patch + 1], "none", "no_partner"), length),
+                None => {}
+            },
             Verdict::Extend(x) => {
                 let mut ids = vec![patch + 1, x.partner + 1];
                 ids.sort_unstable();
@@ -131,6 +232,9 @@ pub fn stitch(
                 ));
             }
         }
+    }
+    if pass == Pass::Rims && planned.is_empty() {
+        return Ok(None);
     }
     // (patch, index among the faces of the extension's handle) of each made strip and corner.
     let mut strips: Vec<(usize, usize)> = Vec::new();
@@ -158,7 +262,6 @@ pub fn stitch(
         }
         extended_handle = Some(extended.handle);
     }
-    let joints = tally.reports();
 
     // One argument per patch: its kept pieces and its strips.
     let mut order: Vec<usize> = Vec::new();
@@ -188,8 +291,7 @@ pub fn stitch(
     }
     let branches = find_branches(&again, &branch_limits(patches));
     let keep = keep_mask(again.faces.len(), &branches);
-    let free = classify_free(sidecar, &again, &keep, patches, solids)?;
-    Ok(Stitched { fused: again, keep, branches, joints, free })
+    Ok(Some((again, keep, branches)))
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
@@ -232,7 +334,8 @@ fn corners(planned: &[(usize, StripRequest, JointKey, &EdgeProbe)], fuzzy: f64) 
     out
 }
 
-/// Sorts the free edges of the result into rim and open joints (the inside test of `decide`).
+/// Sorts the free edges of the result into rim and open (the inside test of `decide`, or the edge stopping short
+/// of the boundary by more than the rim tolerance).
 fn classify_free(
     sidecar: &mut Sidecar,
     fused: &Fused,
@@ -245,7 +348,8 @@ fn classify_free(
     let mut out = FreeEdges::default();
     for (&(edge, face), p) in free.iter().zip(&probes) {
         let length = fused.edges[edge].length;
-        if open(fused, face, p, patches, solids) {
+        // Short of the rim is open too: the material goes on past the edge, if only for a round's width.
+        if open(fused, face, p, patches, solids) || shortfall(fused, face, p, patches, solids).is_some() {
             out.open_edges += 1;
             out.open_length += length;
         } else {

@@ -61,3 +61,10 @@ pub fn mesh_tolerance(volume: f64, area: f64) -> f64 {
     let wall = if area > 0.0 { 2.0 * volume / area } else { 1.0 };
     (wall * 0.05).max(1e-3)
 }
+
+/// A patch's free edge this close to the part's boundary (mm, measured at mid-wall) is on the rim and does not
+/// grow to it: a tenth of the patch's thickness, and never under two chords of the solid's mesh (a curved rim
+/// is met on its mesh, up to a chord's sagitta off the true surface).
+pub fn on_rim(thickness: f64, mesh_tolerance: f64) -> f64 {
+    (0.1 * thickness).max(2.0 * mesh_tolerance)
+}

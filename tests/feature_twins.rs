@@ -61,6 +61,26 @@ fn chamfers_on_a_rim_at_a_corner_and_at_a_rib_root_are_bridged() {
 }
 
 #[test]
+fn a_rib_with_a_rounded_top_grows_to_its_top() {
+    // Its skins stop 0.8 under the top: the patch grows to the rim (a "rim" joint line the twin has not), and
+    // then has the twin's area. Patch ids follow the face order, which differs: lines are compared sorted.
+    let renumbered = |text: &str| {
+        let mut lines: Vec<String> = text
+            .lines()
+            .filter(|l| !l.contains(" rim extended"))
+            .map(|l| l.replace("patch 1 ", "patch _ ").replace("patch 2 ", "patch _ "))
+            .collect();
+        lines.sort();
+        lines
+    };
+    let (got, found) = run("t_rib_rounded");
+    let (expected, _) = run("t_rib");
+    assert_eq!(got.lines().filter(|l| l.contains(" rim extended edges=1 length=60.00")).count(), 1, "{got}");
+    assert_eq!(renumbered(&got), renumbered(&expected));
+    assert_eq!(found, vec![("fillet".to_string(), 0.8); 2]);
+}
+
+#[test]
 fn a_small_hole_is_filled_and_a_large_one_kept() {
     same_as_twin("plate_holes", "plate_large_hole", &[("hole", 1.5)]);
 }

@@ -61,6 +61,17 @@ impl SolidMesh {
         odd >= 2
     }
 
+    /// Distance from `p` along the unit direction `dir` to the nearest mesh triangle, if within `reach`.
+    pub fn exit(&self, p: DVec3, dir: DVec3, reach: f64) -> Option<f64> {
+        let end = p + dir * reach;
+        let query = AABB::from_corners(p.min(end).to_array(), p.max(end).to_array());
+        self.tree
+            .locate_in_envelope_intersecting(&query)
+            .filter_map(|t| hit_triangle(p, dir, t.corners))
+            .filter(|&d| d <= reach)
+            .min_by(f64::total_cmp)
+    }
+
     fn crossings(&self, p: DVec3, dir: DVec3, reach: f64) -> usize {
         let end = p + dir * reach;
         let query = AABB::from_corners(p.min(end).to_array(), p.max(end).to_array());
@@ -82,5 +93,15 @@ mod tests {
         assert!(!solid.contains(DVec3::new(5.0, 2.0, 2.5)));
         assert!(!solid.contains(DVec3::new(-0.1, 2.0, 1.0)));
         assert!(!solid.contains(DVec3::new(50.0, 2.0, 1.0)));
+    }
+
+    #[test]
+    fn exit_distance_to_the_nearest_side() {
+        let graph = cuboid(DVec3::ZERO, DVec3::new(10.0, 4.0, 2.0));
+        let solid = SolidMesh::new(&graph).unwrap();
+        let d = solid.exit(DVec3::new(5.0, 2.0, 1.5), DVec3::Z, 1.0).unwrap();
+        assert!((d - 0.5).abs() < 1e-9, "{d}");
+        assert!((solid.exit(DVec3::new(5.0, 2.0, 1.0), -DVec3::X, 9.0).unwrap() - 5.0).abs() < 1e-9);
+        assert_eq!(solid.exit(DVec3::new(5.0, 2.0, 1.0), -DVec3::X, 4.0), None, "beyond the reach");
     }
 }
