@@ -311,6 +311,15 @@ def t_rib_rounded() -> Fixture:
     return Fixture(single_solid(part), 14400 - 2 * 60 * 0.8**2 * (1 - math.pi / 4), 12)
 
 
+def plate_step() -> Fixture:
+    """flat_plate whose right half (x >= 50) is 3 thick instead of 2 (a step on its top): two walls of two
+    thicknesses whose mid-surfaces (z = 1 and z = 1.5) meet through a connecting face at the step.
+    Faces: 8. Volume: 12000 + 50 * 60 * 1.
+    """
+    part = box(0, 0, 0, 100, 60, 2) + box(50, 0, 2, 50, 60, 1)
+    return Fixture(single_solid(part), 15000, 8)
+
+
 PARTS: list[Callable[[], Fixture]] = [
     flat_plate,
     l_bracket,
@@ -329,6 +338,7 @@ PARTS: list[Callable[[], Fixture]] = [
     l_bracket_chamfer,
     t_rib_chamfers,
     t_rib_rounded,
+    plate_step,
 ]
 
 

@@ -41,6 +41,8 @@ pub enum JointKind {
     L,
     /// No partner: the edge grows to the part's boundary.
     Rim,
+    /// Two parallel patches at a thickness step (or an in-plane gap) bridged by a quad.
+    Step,
 }
 
 impl JointKind {
@@ -50,6 +52,7 @@ impl JointKind {
             JointKind::T => "t",
             JointKind::L => "l",
             JointKind::Rim => "rim",
+            JointKind::Step => "step",
         }
     }
 }
@@ -155,6 +158,80 @@ pub fn rim_shortfall(
     // A strip needs a positive length at every sample: where the edge touches the boundary it overshoots by a
     // sliver far inside the rim tolerance.
     (known[known.len() / 2] > on_rim).then(|| fill_gaps(&shortfall).into_iter().map(|d| d.max(0.5 * on_rim)).collect())
+}
+
+/// A free edge that found no partner, as the step search sees it.
+#[derive(Debug, Clone)]
+pub struct LooseEdge {
+    pub patch: usize,
+    pub thickness: f64,
+    /// Samples along the edge, ends included.
+    pub points: Vec<DVec3>,
+    /// The patch normal and the outward direction (in the patch, away from it) at the edge.
+    pub normal: DVec3,
+    pub outward: DVec3,
+}
+
+/// Within this angle two directions are parallel for the step search (degrees).
+const STEP_PARALLEL_DEG: f64 = 5.0;
+
+/// Bridges across thickness steps and in-plane gaps (the in-plane joint): two straight loose edges of
+/// different, parallel patches, running side by side and facing each other (outward directions opposite),
+/// whose levels differ by at most the larger thickness and whose in-plane gap is no wider than it. The two
+/// levels meet through a quad between the edges over the stretch they share: a wall that changes thickness
+/// keeps its mid-surface on each side and a short connecting face at the step. Each edge is bridged once,
+/// nearest pairs first. Returns (i, j, quad [A(s0), B(s0), B(s1), A(s1)]) with i < j.
+pub fn step_bridges(edges: &[LooseEdge]) -> Vec<(usize, usize, [DVec3; 4])> {
+    let parallel = STEP_PARALLEL_DEG.to_radians().cos();
+    let line = |e: &LooseEdge| -> Option<(DVec3, DVec3, f64)> {
+        let (a, b) = (*e.points.first()?, *e.points.last()?);
+        let length = a.distance(b);
+        let u = (b - a).normalize_or_zero();
+        let straight = e.points.iter().all(|p| (*p - a).reject_from_normalized(u).length() <= 1e-3 * length.max(1e-9));
+        (length > 0.0 && straight).then_some((a, u, length))
+    };
+    let lines: Vec<Option<(DVec3, DVec3, f64)>> = edges.iter().map(line).collect();
+    let mut candidates: Vec<(f64, usize, usize, [DVec3; 4])> = Vec::new();
+    for i in 0..edges.len() {
+        let Some((a, u, la)) = lines[i] else { continue };
+        for j in i + 1..edges.len() {
+            let Some((b, v, lb)) = lines[j] else { continue };
+            let (ei, ej) = (&edges[i], &edges[j]);
+            let reach = ei.thickness.max(ej.thickness);
+            if ei.patch == ej.patch
+                || u.dot(v).abs() < parallel
+                || ei.normal.dot(ej.normal).abs() < parallel
+                || ei.outward.dot(ej.outward) > -parallel
+            {
+                continue;
+            }
+            // B's line relative to A's: its offset (level and in-plane gap) and where it starts and ends on u.
+            let offset = (b - a).reject_from_normalized(u);
+            if offset.dot(ei.normal).abs() > reach || offset.dot(ei.outward).abs() > reach {
+                continue;
+            }
+            let (b0, b1) = ((b - a).dot(u), (b - a).dot(u) + lb * u.dot(v).signum());
+            let (s0, s1) = (b0.min(b1).max(0.0), b0.max(b1).min(la));
+            if s1 - s0 <= 1e-6 * la {
+                continue;
+            }
+            let on_a = |s: f64| a + u * s;
+            let quad = [on_a(s0), on_a(s0) + offset, on_a(s1) + offset, on_a(s1)];
+            candidates.push((offset.length(), i, j, quad));
+        }
+    }
+    candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)).then(x.2.cmp(&y.2)));
+    let mut used = vec![false; edges.len()];
+    let mut out = Vec::new();
+    for (_, i, j, quad) in candidates {
+        if !used[i] && !used[j] {
+            used[i] = true;
+            used[j] = true;
+            out.push((i, j, quad));
+        }
+    }
+    out.sort_by_key(|&(i, j, _)| (i, j));
+    out
 }
 
 /// Missing values linearly interpolated between their known neighbours, held constant past the ends.
@@ -273,6 +350,35 @@ mod tests {
         // Material on past the reach (another wall): no rim to grow to.
         p.points.iter_mut().for_each(|q| q.z = 5.0);
         assert_eq!(rim_shortfall(&p, 0.0, 0.2, contains, exit), None);
+    }
+
+    fn loose(patch: usize, x: f64, z: f64, y: (f64, f64), outward: DVec3) -> LooseEdge {
+        let points = (0..5).map(|k| DVec3::new(x, y.0 + (y.1 - y.0) * k as f64 / 4.0, z)).collect();
+        LooseEdge { patch, thickness: 2.0, points, normal: DVec3::Z, outward }
+    }
+
+    #[test]
+    fn two_levels_of_a_thickness_step_are_bridged_over_the_stretch_they_share() {
+        // A t=2 patch at z=1 ending at x=50 (outward +x), a t=3 patch at z=1.5 starting there (outward -x).
+        let edges = [loose(0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 50.0, 1.5, (60.0, 10.0), -DVec3::X)];
+        let bridges = step_bridges(&edges);
+        assert_eq!(bridges.len(), 1);
+        let (i, j, quad) = bridges[0];
+        assert_eq!((i, j), (0, 1));
+        let expected = [(10.0, 1.0), (10.0, 1.5), (60.0, 1.5), (60.0, 1.0)];
+        for (q, (y, z)) in quad.iter().zip(expected) {
+            assert!(q.distance(DVec3::new(50.0, y, z)) < 1e-9, "{quad:?}");
+        }
+    }
+
+    #[test]
+    fn no_bridge_between_edges_facing_the_same_way_too_far_or_of_one_patch() {
+        let same_way = [loose(0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 50.0, 1.5, (0.0, 60.0), DVec3::X)];
+        assert!(step_bridges(&same_way).is_empty());
+        let far = [loose(0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 50.0, 4.0, (0.0, 60.0), -DVec3::X)];
+        assert!(step_bridges(&far).is_empty(), "3 apart, thicker than either wall");
+        let one = [loose(0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(0, 50.0, 1.5, (0.0, 60.0), -DVec3::X)];
+        assert!(step_bridges(&one).is_empty());
     }
 
     #[test]

@@ -201,6 +201,8 @@ fn grow(
 
     // (patch, strip, joint key, probe) per extended edge; joint keys of the edges with no partner.
     let mut planned: Vec<(usize, StripRequest, JointKey, &EdgeProbe)> = Vec::new();
+    // (patch, probe, length) of the edges that found no partner and no rim.
+    let mut loose: Vec<(usize, &EdgeProbe, f64)> = Vec::new();
     for (&(edge, face), p) in free.iter().zip(&probes) {
         let patch = patch_of[face];
         let length = fused.edges[edge].length;
@@ -218,7 +220,7 @@ fn grow(
                     (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
                     p,
                 )),
-                None if verdict == Verdict::Unresolved => tally.add((vec![patch + 1], "none", "no_partner"), length),
+                None if verdict == Verdict::Unresolved => loose.push((patch, p, length)),
                 None => {}
             },
             Verdict::Extend(x) => {
@@ -233,18 +235,19 @@ fn grow(
             }
         }
     }
-    if pass == Pass::Rims && planned.is_empty() {
+    let steps = step_quads(&loose, &thickness, tally);
+    if pass == Pass::Rims && planned.is_empty() && steps.is_empty() {
         return Ok(None);
     }
     // (patch, index among the faces of the extension's handle) of each made strip and corner.
     let mut strips: Vec<(usize, usize)> = Vec::new();
     let mut extended_handle = None;
-    if !planned.is_empty() {
+    if !planned.is_empty() || !steps.is_empty() {
         let corners = corners(&planned, fuzzy);
         let extended: Extended = sidecar.call(&Request::ExtendEdges {
             handle: fused.handle,
             strips: planned.iter().map(|(_, s, _, _)| s.clone()).collect(),
-            corners: corners.iter().map(|(_, c)| c.clone()).collect(),
+            corners: corners.iter().map(|(_, c)| c).chain(steps.iter().map(|(_, c, _, _)| c)).cloned().collect(),
         })?;
         for ((patch, request, key, _), made) in planned.into_iter().zip(&extended.strips) {
             let length = fused.edges[request.edge].length;
@@ -258,6 +261,17 @@ fn grow(
         for (&(patch, _), made) in corners.iter().zip(&extended.corners) {
             if made.area.is_some() {
                 strips.push((patch, strips.len()));
+            }
+        }
+        for ((patch, _, key, lengths), made) in steps.into_iter().zip(&extended.corners[corners.len()..]) {
+            let status = if made.area.is_some() {
+                strips.push((patch, strips.len()));
+                key.2
+            } else {
+                "kernel_failed"
+            };
+            for length in lengths {
+                tally.add((key.0.clone(), key.1, status), length);
             }
         }
         extended_handle = Some(extended.handle);
@@ -292,6 +306,42 @@ fn grow(
     let branches = find_branches(&again, &branch_limits(patches));
     let keep = keep_mask(again.faces.len(), &branches);
     Ok(Some((again, keep, branches)))
+}
+
+/// The quads bridging loose edges across thickness steps (`joint::step_bridges`), each owned by the first
+/// edge's patch, with its joint key and the lengths of both edges; the edges left alone are tallied as having
+/// no partner.
+fn step_quads(
+    loose: &[(usize, &EdgeProbe, f64)],
+    thickness: &[f64],
+    tally: &mut JointTally,
+) -> Vec<(usize, CornerRequest, JointKey, [f64; 2])> {
+    let edges: Vec<joint::LooseEdge> = loose
+        .iter()
+        .map(|&(patch, p, _)| {
+            let mid = p.points.len() / 2;
+            joint::LooseEdge {
+                patch,
+                thickness: thickness[patch],
+                points: p.points.clone(),
+                normal: p.normals[mid],
+                outward: p.outward[mid],
+            }
+        })
+        .collect();
+    let mut bridged = vec![false; loose.len()];
+    let mut out = Vec::new();
+    for (i, j, quad) in joint::step_bridges(&edges) {
+        (bridged[i], bridged[j]) = (true, true);
+        let mut ids = vec![edges[i].patch + 1, edges[j].patch + 1];
+        ids.sort_unstable();
+        let request = CornerRequest { points: quad, normal: edges[i].outward };
+        out.push((edges[i].patch, request, (ids, joint::JointKind::Step.name(), "extended"), [loose[i].2, loose[j].2]));
+    }
+    for (&(patch, _, length), _) in loose.iter().zip(&bridged).filter(|(_, &b)| !b) {
+        tally.add((vec![patch + 1], "none", "no_partner"), length);
+    }
+    out
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
