@@ -178,7 +178,7 @@ fn hole_diameter(graph: &FaceGraph, region: &BTreeSet<FaceId>, tolerance: f64) -
     first.map(|(_, _, r)| 2.0 * r)
 }
 
-/// The width of `face` if it is a chamfer: a plane whose two longest edges are bevels of one kind (both
+/// The width of plane `face` if it is a chamfer: a plane whose two longest edges are bevels of one kind (both
 /// convex or both concave, each turning by BEVEL degrees) onto two different faces, at least one a wall skin
 /// and not the two sides of one wall. The width is the area over the mean length of the two edges (exact for
 /// the trapezoid of a mitred chamfer).
@@ -186,9 +186,6 @@ fn chamfer_width(graph: &FaceGraph, roles: &[FaceRole], face: FaceId) -> Option<
     /// A turn under 10 degrees is a tangent blend or a facet, one over 80 a square rim or step.
     const BEVEL: std::ops::RangeInclusive<f64> = 10.0..=80.0;
     let f = &graph.faces[face];
-    if !matches!(f.surface, Surface::Plane { .. }) {
-        return None;
-    }
     let mut edges: Vec<EdgeId> = f.loops.iter().flatten().copied().collect();
     edges.sort_by(|&a, &b| graph.edges[b].length.total_cmp(&graph.edges[a].length).then(a.cmp(&b)));
     let [a, b, ..] = edges[..] else { return None };
@@ -245,28 +242,30 @@ pub fn recognise(graph: &FaceGraph, roles: &[FaceRole], limits: &Limits, toleran
             }
         }
     }
+    // Blends: a fillet is a cylinder or torus, a chamfer a plane, so one look at each face left.
     for face in &graph.faces {
         if taken.contains(&face.id) || is_skin(&roles[face.id]) {
             continue;
         }
-        let radius = match face.surface {
-            Surface::Cylinder { radius, .. } => radius,
-            Surface::Torus { minor_radius, .. } => minor_radius,
+        let (kind, size) = match face.surface {
+            Surface::Cylinder { radius, .. } | Surface::Torus { minor_radius: radius, .. } => {
+                let tangent_to_skin = face.loops.iter().flatten().any(|&e| {
+                    graph.edges[e].convexity == Convexity::Smooth
+                        && across(graph, e, face.id).any(|g| is_skin(&roles[g]))
+                });
+                if !tangent_to_skin {
+                    continue;
+                }
+                (FeatureKind::Fillet, radius)
+            }
+            Surface::Plane { .. } => match chamfer_width(graph, roles, face.id) {
+                Some(width) => (FeatureKind::Chamfer, width),
+                None => continue,
+            },
             _ => continue,
         };
-        let tangent_to_skin = face.loops.iter().flatten().any(|&e| {
-            graph.edges[e].convexity == Convexity::Smooth && across(graph, e, face.id).any(|g| is_skin(&roles[g]))
-        });
-        if radius <= limits.fillet_max && tangent_to_skin {
-            features.push(Feature { kind: FeatureKind::Fillet, faces: vec![face.id], size: radius, fill: Vec::new() });
-        }
-    }
-    for face in &graph.faces {
-        if taken.contains(&face.id) || is_skin(&roles[face.id]) {
-            continue;
-        }
-        if let Some(width) = chamfer_width(graph, roles, face.id).filter(|&w| w <= limits.fillet_max) {
-            features.push(Feature { kind: FeatureKind::Chamfer, faces: vec![face.id], size: width, fill: Vec::new() });
+        if size <= limits.fillet_max {
+            features.push(Feature { kind, faces: vec![face.id], size, fill: Vec::new() });
         }
     }
     features.sort_by(|a, b| a.kind.cmp(&b.kind).then(a.faces.cmp(&b.faces)));

@@ -58,18 +58,15 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
         warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
-        let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &sp.fill_edges());
+        let (fill, narrow) = (sp.fill_edges(), sp.clip_narrow());
+        let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &fill);
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
             let request = Request::MakePatch {
                 handle: solid.handle,
                 faces: plan.faces.clone(),
                 placement: plan.placement.clone(),
-                clip: Some(Clip {
-                    partners: plan.partners.clone(),
-                    fuzzy: sp.tolerances.fuse,
-                    narrow: sp.clip_narrow(),
-                }),
+                clip: Some(Clip { partners: plan.partners.clone(), fuzzy: sp.tolerances.fuse, narrow }),
                 reverse: plan.reverse,
                 fill: plan.fill.clone(),
             };

@@ -163,28 +163,49 @@ pub fn stitch(
     fuzzy: f64,
 ) -> Result<Stitched, SidecarError> {
     let mut tally = JointTally::default();
-    let (mut fused, mut keep, mut branches) =
-        grow(sidecar, fused, keep, patches, solids, fuzzy, Pass::Joints, &mut tally)?.expect("the joints pass fuses");
-    let mut free = classify_free(sidecar, &fused, &keep, patches, solids)?;
-    if free.open_edges > 0 {
+    let free = free_edges(fused, keep);
+    let kept: Vec<usize> = (0..fused.faces.len()).filter(|&f| keep[f]).collect();
+    let probes = probe(sidecar, fused, &free, kept, patches)?;
+    let grown = grow(sidecar, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
+    let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
+    // The free edges of the result, probed once for both the rims pass and the final count.
+    let (mut free, mut probes) = free_and_probed(sidecar, &fused, &keep, patches)?;
+    let mut counted = classify_free(&fused, &free, &probes, patches, solids);
+    if counted.open_edges > 0 {
         if let Some((again, again_keep, more)) =
-            grow(sidecar, &fused, &keep, patches, solids, fuzzy, Pass::Rims, &mut tally)?
+            grow(sidecar, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
         {
             (fused, keep) = (again, again_keep);
             branches.extend(more);
-            free = classify_free(sidecar, &fused, &keep, patches, solids)?;
+            (free, probes) = free_and_probed(sidecar, &fused, &keep, patches)?;
+            counted = classify_free(&fused, &free, &probes, patches, solids);
         }
     }
-    Ok(Stitched { fused, keep, branches, joints: tally.reports(), free })
+    Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted })
 }
 
-/// One pass of `stitch`: the result fused again, its kept pieces and the branches dropped; None when a rims
-/// pass finds nothing to grow.
+/// The free edges of `fused` (pieces `keep`) and their probes, without meetings.
+fn free_and_probed(
+    sidecar: &mut Sidecar,
+    fused: &Fused,
+    keep: &[bool],
+    patches: &[PatchInfo],
+) -> Result<(Vec<(usize, usize)>, Vec<EdgeProbe>), SidecarError> {
+    let free = free_edges(fused, keep);
+    let probes = probe(sidecar, fused, &free, Vec::new(), patches)?;
+    Ok((free, probes))
+}
+
+/// One pass of `stitch` over the free edges `free` of `fused` and their probes (with meetings for a joints
+/// pass): the result fused again, its kept pieces and the branches dropped; None when a rims pass finds
+/// nothing to grow.
 #[allow(clippy::too_many_arguments)]
 fn grow(
     sidecar: &mut Sidecar,
     fused: &Fused,
     keep: &[bool],
+    free: &[(usize, usize)],
+    probes: &[EdgeProbe],
     patches: &[PatchInfo],
     solids: &[SolidMesh],
     fuzzy: f64,
@@ -193,22 +214,20 @@ fn grow(
 ) -> Result<Option<(Fused, Vec<bool>, Vec<Branch>)>, SidecarError> {
     let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
     let patch_of: Vec<usize> = fused.faces.iter().map(|f| f.patch).collect();
-    let free = free_edges(fused, keep);
     let kept: Vec<usize> = (0..fused.faces.len()).filter(|&f| keep[f]).collect();
-    // A rims pass needs no meetings with other patches.
-    let targets = if pass == Pass::Joints { kept.clone() } else { Vec::new() };
-    let probes = probe(sidecar, fused, &free, targets, patches)?;
 
     // (patch, strip, joint key, probe) per extended edge; joint keys of the edges with no partner.
     let mut planned: Vec<(usize, StripRequest, JointKey, &EdgeProbe)> = Vec::new();
     // (patch, probe, length) of the edges that found no partner and no rim.
     let mut loose: Vec<(usize, &EdgeProbe, f64)> = Vec::new();
-    for (&(edge, face), p) in free.iter().zip(&probes) {
+    for (&(edge, face), p) in free.iter().zip(probes) {
         let patch = patch_of[face];
         let length = fused.edges[edge].length;
-        let open = open(fused, face, p, patches, solids);
         let verdict = match pass {
-            Pass::Joints => joint::decide(patch, open, p, &patch_of, &thickness, patches[patch].reach),
+            Pass::Joints => {
+                let open = open(fused, face, p, patches, solids);
+                joint::decide(patch, open, p, &patch_of, &thickness, patches[patch].reach)
+            }
             // Only growth to the rim; an edge that found no partner before is not counted again.
             Pass::Rims => Verdict::Rim,
         };
@@ -387,16 +406,14 @@ fn corners(planned: &[(usize, StripRequest, JointKey, &EdgeProbe)], fuzzy: f64) 
 /// Sorts the free edges of the result into rim and open (the inside test of `decide`, or the edge stopping short
 /// of the boundary by more than the rim tolerance).
 fn classify_free(
-    sidecar: &mut Sidecar,
     fused: &Fused,
-    keep: &[bool],
+    free: &[(usize, usize)],
+    probes: &[EdgeProbe],
     patches: &[PatchInfo],
     solids: &[SolidMesh],
-) -> Result<FreeEdges, SidecarError> {
-    let free = free_edges(fused, keep);
-    let probes = probe(sidecar, fused, &free, Vec::new(), patches)?;
+) -> FreeEdges {
     let mut out = FreeEdges::default();
-    for (&(edge, face), p) in free.iter().zip(&probes) {
+    for (&(edge, face), p) in free.iter().zip(probes) {
         let length = fused.edges[edge].length;
         // Short of the rim is open too: the material goes on past the edge, if only for a round's width.
         if open(fused, face, p, patches, solids) || shortfall(fused, face, p, patches, solids).is_some() {
@@ -407,7 +424,7 @@ fn classify_free(
             out.rim_length += length;
         }
     }
-    Ok(out)
+    out
 }
 
 /// Patch ids (sorted), kind, status.

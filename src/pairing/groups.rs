@@ -5,7 +5,6 @@ use serde::Serialize;
 
 use super::{NearMiss, Pair, PairKind, Thickness};
 use crate::face_graph::{FaceGraph, FaceId};
-use crate::union_find::find;
 
 /// The two skins of a wall; `A` holds the group's lowest face id.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
@@ -78,13 +77,10 @@ pub fn group_and_classify(
 ) -> (Vec<PairGroup>, Vec<FaceRole>) {
     let n = graph.faces.len();
     let mut partners: Vec<Vec<(FaceId, usize)>> = vec![Vec::new(); n];
-    let mut parent: Vec<usize> = (0..n).collect();
     for (i, p) in pairs.iter().enumerate() {
         let [a, b] = p.faces;
         partners[a].push((b, i));
         partners[b].push((a, i));
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-        parent[ra.max(rb)] = ra.min(rb);
     }
 
     // Components in order of their lowest face id: group ids are stable for a given input.
