@@ -313,7 +313,7 @@ def t_rib_rounded() -> Fixture:
 
 def plate_step() -> Fixture:
     """flat_plate whose right half (x >= 50) is 3 thick instead of 2 (a step on its top): two walls of two
-    thicknesses whose mid-surfaces (z = 1 and z = 1.5) meet through a connecting face at the step.
+    thicknesses whose mid-surfaces (z = 1 and z = 1.5) meet through a ramp at the step.
     Faces: 8. Volume: 12000 + 50 * 60 * 1.
     """
     part = box(0, 0, 0, 100, 60, 2) + box(50, 0, 2, 50, 60, 1)

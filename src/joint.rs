@@ -175,13 +175,43 @@ pub struct LooseEdge {
 /// Within this angle two directions are parallel for the step search (degrees).
 const STEP_PARALLEL_DEG: f64 = 5.0;
 
+/// A step no higher than this share of the thinner wall (the rim tolerance's share, `tolerance::on_rim`) stays
+/// an upright quad: a shell mesher merges it into the thickness change, while the ramp's cut through the
+/// thicker patch drops every piece of it narrower than the run, with whatever joins there (a 0.15 mm step on
+/// fw13_top_cover's 2.7 mm boss cut off one of its joints).
+const STEP_LEVEL_SHARE: f64 = 0.1;
+
+/// The thin edge spans the thick edge when it runs along this share of it.
+const STEP_SPAN_SHARE: f64 = 0.99;
+
+/// How far (share of the thinner wall's thickness) a ramp between two levels runs into the thicker wall. Half a
+/// thickness keeps the piece of the thicker patch it replaces inside the trimming's branch width (0.75 t), so
+/// that piece is dropped as an overshoot, and gives a 0.5 mm step a slope of 27 degrees on a 2 mm wall.
+pub const RAMP_RUN: f64 = 0.5;
+
+/// A bridge between two loose edges: the quad and the two edges' indices. The first side of the quad lies on
+/// `owner`, whose patch the quad joins: the thinner edge for a ramp (so the strip of the thicker patch past the
+/// ramp is trimmed as hanging past another patch), else the first edge.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepBridge {
+    pub owner: usize,
+    pub other: usize,
+    /// [owner(s0), other'(s0), other'(s1), owner(s1)], other' the other edge moved in by a ramp's run.
+    pub quad: [DVec3; 4],
+    /// The side the quad faces: a ramp its patch's, an upright or flat quad its owner's outward direction.
+    pub normal: DVec3,
+}
+
 /// Bridges across thickness steps and in-plane gaps (the in-plane joint): two straight loose edges of
 /// different, parallel patches, running side by side and facing each other (outward directions opposite),
-/// whose levels differ by at most the larger thickness and whose in-plane gap is no wider than it. The two
-/// levels meet through a quad between the edges over the stretch they share: a wall that changes thickness
-/// keeps its mid-surface on each side and a short connecting face at the step. Each edge is bridged once,
-/// nearest pairs first. Returns (i, j, quad [A(s0), B(s0), B(s1), A(s1)]) with i < j.
-pub fn step_bridges(edges: &[LooseEdge]) -> Vec<(usize, usize, [DVec3; 4])> {
+/// whose levels differ by at most the larger thickness and whose in-plane gap is no wider than it. The quad
+/// between the edges over the stretch they share fills an in-plane gap. A step steeper than 45 degrees and
+/// higher than `STEP_LEVEL_SHARE` of the thinner wall is laid down into a ramp from the thinner patch's edge
+/// to a line `RAMP_RUN` x its thickness inside the thicker patch (whose strip past that line trimming drops),
+/// when that edge spans the thicker one: a face standing across the wall would give a crash mesh elements as
+/// short as the step, and has no wall thickness of its own (the judge measures it along the wall). Each edge
+/// is bridged once, nearest pairs first, sorted by (owner, other).
+pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     let parallel = STEP_PARALLEL_DEG.to_radians().cos();
     let line = |e: &LooseEdge| -> Option<(DVec3, DVec3, f64)> {
         let (a, b) = (*e.points.first()?, *e.points.last()?);
@@ -191,23 +221,29 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<(usize, usize, [DVec3; 4])> {
         (length > 0.0 && straight).then_some((a, u, length))
     };
     let lines: Vec<Option<(DVec3, DVec3, f64)>> = edges.iter().map(line).collect();
-    let mut candidates: Vec<(f64, usize, usize, [DVec3; 4])> = Vec::new();
+    let mut candidates: Vec<(f64, StepBridge)> = Vec::new();
     for i in 0..edges.len() {
-        let Some((a, u, la)) = lines[i] else { continue };
         for j in i + 1..edges.len() {
-            let Some((b, v, lb)) = lines[j] else { continue };
             let (ei, ej) = (&edges[i], &edges[j]);
-            let reach = ei.thickness.max(ej.thickness);
             if ei.patch == ej.patch
-                || u.dot(v).abs() < parallel
                 || ei.normal.dot(ej.normal).abs() < parallel
                 || ei.outward.dot(ej.outward) > -parallel
             {
                 continue;
             }
-            // B's line relative to A's: its offset (level and in-plane gap) and where it starts and ends on u.
+            // Measured from the thinner edge (the first on a tie), which carries a ramp.
+            let (thin, thick) = if ej.thickness < ei.thickness { (j, i) } else { (i, j) };
+            let (Some((a, u, la)), Some((b, v, lb))) = (lines[thin], lines[thick]) else { continue };
+            let (et, ek) = (&edges[thin], &edges[thick]);
+            let reach = et.thickness.max(ek.thickness);
+            if u.dot(v).abs() < parallel {
+                continue;
+            }
+            // The thick edge's line relative to the thin one's: its offset (level and in-plane gap) and where it
+            // starts and ends on u.
             let offset = (b - a).reject_from_normalized(u);
-            if offset.dot(ei.normal).abs() > reach || offset.dot(ei.outward).abs() > reach {
+            let level = offset.dot(et.normal).abs();
+            if level > reach || offset.dot(et.outward).abs() > reach {
                 continue;
             }
             let (b0, b1) = ((b - a).dot(u), (b - a).dot(u) + lb * u.dot(v).signum());
@@ -215,22 +251,39 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<(usize, usize, [DVec3; 4])> {
             if s1 - s0 <= 1e-6 * la {
                 continue;
             }
+            // A ramp only where the thin edge spans the whole thick edge, over at least the larger thickness: the
+            // thick patch is cut along a line through it, and a shorter ramp would cut away the rest of that
+            // patch's edge, a short one (the corner of a notch) pieces beside the notch, and what joins there.
+            let spans = s1 - s0 >= STEP_SPAN_SHARE * lb && s1 - s0 >= reach;
+            // Only a bridge steeper than 45 degrees needs laying down; a flatter one already spans the gap.
+            let ramp = spans && level > STEP_LEVEL_SHARE * et.thickness && level > offset.dot(et.outward);
+            let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
+            let far = offset - ek.outward * run;
             let on_a = |s: f64| a + u * s;
-            let quad = [on_a(s0), on_a(s0) + offset, on_a(s1) + offset, on_a(s1)];
-            candidates.push((offset.length(), i, j, quad));
+            let quad = [on_a(s0), on_a(s0) + far, on_a(s1) + far, on_a(s1)];
+            let bridge = if ramp {
+                StepBridge { owner: thin, other: thick, quad, normal: et.normal }
+            } else if thin == i {
+                StepBridge { owner: thin, other: thick, quad, normal: et.outward }
+            } else {
+                // A flat or upright bridge joins the first edge's patch: the same quad seen from the other side.
+                StepBridge { owner: thick, other: thin, quad: [quad[1], quad[0], quad[3], quad[2]], normal: ek.outward }
+            };
+            candidates.push((offset.length(), bridge));
         }
     }
-    candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)).then(x.2.cmp(&y.2)));
+    let key = |b: &StepBridge| (b.owner.min(b.other), b.owner.max(b.other));
+    candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then(key(&x.1).cmp(&key(&y.1))));
     let mut used = vec![false; edges.len()];
     let mut out = Vec::new();
-    for (_, i, j, quad) in candidates {
-        if !used[i] && !used[j] {
-            used[i] = true;
-            used[j] = true;
-            out.push((i, j, quad));
+    for (_, bridge) in candidates {
+        if !used[bridge.owner] && !used[bridge.other] {
+            used[bridge.owner] = true;
+            used[bridge.other] = true;
+            out.push(bridge);
         }
     }
-    out.sort_by_key(|&(i, j, _)| (i, j));
+    out.sort_by_key(|b| (b.owner, b.other));
     out
 }
 
@@ -352,32 +405,46 @@ mod tests {
         assert_eq!(rim_shortfall(&p, 0.0, 0.2, contains, exit), None);
     }
 
-    fn loose(patch: usize, x: f64, z: f64, y: (f64, f64), outward: DVec3) -> LooseEdge {
+    fn loose(patch: usize, thickness: f64, x: f64, z: f64, y: (f64, f64), outward: DVec3) -> LooseEdge {
         let points = (0..5).map(|k| DVec3::new(x, y.0 + (y.1 - y.0) * k as f64 / 4.0, z)).collect();
-        LooseEdge { patch, thickness: 2.0, points, normal: DVec3::Z, outward }
+        LooseEdge { patch, thickness, points, normal: DVec3::Z, outward }
     }
 
     #[test]
-    fn two_levels_of_a_thickness_step_are_bridged_over_the_stretch_they_share() {
-        // A t=2 patch at z=1 ending at x=50 (outward +x), a t=3 patch at z=1.5 starting there (outward -x).
-        let edges = [loose(0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 50.0, 1.5, (60.0, 10.0), -DVec3::X)];
+    fn two_levels_of_a_thickness_step_meet_through_a_ramp_into_the_thicker_wall() {
+        // A t=3 patch at z=1.5 starting at x=50 (outward -x), a t=2 patch at z=1 ending there (outward +x).
+        let edges =
+            [loose(0, 3.0, 50.0, 1.5, (60.0, 10.0), -DVec3::X), loose(1, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X)];
         let bridges = step_bridges(&edges);
         assert_eq!(bridges.len(), 1);
-        let (i, j, quad) = bridges[0];
-        assert_eq!((i, j), (0, 1));
-        let expected = [(10.0, 1.0), (10.0, 1.5), (60.0, 1.5), (60.0, 1.0)];
-        for (q, (y, z)) in quad.iter().zip(expected) {
-            assert!(q.distance(DVec3::new(50.0, y, z)) < 1e-9, "{quad:?}");
+        let StepBridge { owner, other, quad, .. } = &bridges[0];
+        assert_eq!((*owner, *other), (1, 0), "the thinner patch owns the ramp");
+        // From the thin edge up to a line RAMP_RUN x 2 = 1 inside the thick patch.
+        let expected = [(50.0, 10.0, 1.0), (51.0, 10.0, 1.5), (51.0, 60.0, 1.5), (50.0, 60.0, 1.0)];
+        for (q, (x, y, z)) in quad.iter().zip(expected) {
+            assert!(q.distance(DVec3::new(x, y, z)) < 1e-9, "{quad:?}");
+        }
+    }
+
+    #[test]
+    fn an_in_plane_gap_is_bridged_flat() {
+        let edges = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 2.0, 51.5, 1.0, (0.0, 60.0), -DVec3::X)];
+        let bridges = step_bridges(&edges);
+        assert_eq!(bridges.len(), 1);
+        let expected = [(50.0, 0.0), (51.5, 0.0), (51.5, 60.0), (50.0, 60.0)];
+        for (q, (x, y)) in bridges[0].quad.iter().zip(expected) {
+            assert!(q.distance(DVec3::new(x, y, 1.0)) < 1e-9, "{:?}", bridges[0].quad);
         }
     }
 
     #[test]
     fn no_bridge_between_edges_facing_the_same_way_too_far_or_of_one_patch() {
-        let same_way = [loose(0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 50.0, 1.5, (0.0, 60.0), DVec3::X)];
+        let same_way =
+            [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 2.0, 50.0, 1.5, (0.0, 60.0), DVec3::X)];
         assert!(step_bridges(&same_way).is_empty());
-        let far = [loose(0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 50.0, 4.0, (0.0, 60.0), -DVec3::X)];
+        let far = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 2.0, 50.0, 4.0, (0.0, 60.0), -DVec3::X)];
         assert!(step_bridges(&far).is_empty(), "3 apart, thicker than either wall");
-        let one = [loose(0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(0, 50.0, 1.5, (0.0, 60.0), -DVec3::X)];
+        let one = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(0, 2.0, 50.0, 1.5, (0.0, 60.0), -DVec3::X)];
         assert!(step_bridges(&one).is_empty());
     }
 

@@ -327,8 +327,8 @@ fn grow(
     Ok(Some((again, keep, branches)))
 }
 
-/// The quads bridging loose edges across thickness steps (`joint::step_bridges`), each owned by the first
-/// edge's patch, with its joint key and the lengths of both edges; the edges left alone are tallied as having
+/// The quads bridging loose edges across thickness steps (`joint::step_bridges`), each owned by its
+/// `owner` edge's patch, with its joint key and the lengths of both edges; the edges left alone are tallied as having
 /// no partner.
 fn step_quads(
     loose: &[(usize, &EdgeProbe, f64)],
@@ -350,12 +350,13 @@ fn step_quads(
         .collect();
     let mut bridged = vec![false; loose.len()];
     let mut out = Vec::new();
-    for (i, j, quad) in joint::step_bridges(&edges) {
-        (bridged[i], bridged[j]) = (true, true);
-        let mut ids = vec![edges[i].patch + 1, edges[j].patch + 1];
+    for joint::StepBridge { owner, other, quad, normal } in joint::step_bridges(&edges) {
+        (bridged[owner], bridged[other]) = (true, true);
+        let mut ids = vec![edges[owner].patch + 1, edges[other].patch + 1];
         ids.sort_unstable();
-        let request = CornerRequest { points: quad, normal: edges[i].outward };
-        out.push((edges[i].patch, request, (ids, joint::JointKind::Step.name(), "extended"), [loose[i].2, loose[j].2]));
+        let request = CornerRequest { points: quad, normal };
+        let lengths = [loose[owner].2, loose[other].2];
+        out.push((edges[owner].patch, request, (ids, joint::JointKind::Step.name(), "extended"), lengths));
     }
     for (&(patch, _, length), _) in loose.iter().zip(&bridged).filter(|(_, &b)| !b) {
         tally.add((vec![patch + 1], "none", "no_partner"), length);
