@@ -146,7 +146,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     warnings.extend(joint_warnings(&joints));
     let sets = connected_sets(&fused, &keep);
     let shells: Shells =
-        sidecar.call(&Request::MakeShells { handle: fused.handle, shells: sets.clone() }).map_err(kernel)?;
+        sidecar.call(&Request::MakeShells { handle: fused.handle, shells: sets.clone(), fuzzy }).map_err(kernel)?;
     timings.stitch = t.elapsed().as_secs_f64();
 
     let legend = report::legend(&thickness);

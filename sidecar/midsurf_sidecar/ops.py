@@ -124,7 +124,7 @@ def make_shells(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
             used[face_id] = j
         if not group:
             raise BadArgs(f"shell {j} is empty: list at least one face per shell")
-    compound, described = shells.make_shells(face_map, groups)
+    compound, described = shells.make_shells(face_map, groups, require_non_negative(args, "fuzzy"))
     return {"handle": store.put(compound), **described}
 
 

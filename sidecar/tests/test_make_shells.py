@@ -1,9 +1,13 @@
 """make_shells: shells of fused faces in one compound; shared edges survive a STEP round trip."""
 
+import math
+
 import pytest
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
 from OCP.BRepGProp import BRepGProp
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaces
 from OCP.GProp import GProp_GProps
+from OCP.gp import gp, gp_Ax2, gp_Ax3, gp_Circ, gp_Cylinder, gp_Pln, gp_Pnt
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
 from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL
@@ -49,7 +53,7 @@ def test_l_corner_shell_keeps_its_shared_edge_through_step(client, tmp_path):
     f = fused(client, horizontal(), vertical(1.0))
     pair = big_faces(f)
     assert len(pair) == 2
-    ok = client.ok("make_shells", handle=f["handle"], shells=[pair])
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[pair])
     assert sorted(ok["faces"]) == sorted(pair)
     assert ok["valid"] is True
     shells = client.session.store.get(ok["handle"])
@@ -69,7 +73,7 @@ def test_faces_are_numbered_like_the_shells_shape(client):
     areas = [face["area"] for face in f["faces"]]
     base = [i for i, face in enumerate(f["faces"]) if face["patch"] == 0]
     wall = [i for i, face in enumerate(f["faces"]) if face["patch"] == 1]
-    ok = client.ok("make_shells", handle=f["handle"], shells=[wall, list(reversed(base))])
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[wall, list(reversed(base))])
     assert sorted(ok["faces"]) == sorted(base + wall)
     shells = client.session.store.get(ok["handle"])
     assert indexed_map(shells, TopAbs_SHELL).Size() == 2
@@ -80,7 +84,7 @@ def test_faces_are_numbered_like_the_shells_shape(client):
 
 def test_t_junction_in_one_shell_stays_non_manifold(client, tmp_path):
     f = fused(client, horizontal(), vertical(30.0, z0=1.0))
-    ok = client.ok("make_shells", handle=f["handle"], shells=[[0, 1, 2]])
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[[0, 1, 2]])
     assert ok["valid"] is True
     path = tmp_path / "t.step"
     client.ok("write_step", path=str(path), handle=ok["handle"], faces=[])
@@ -92,13 +96,13 @@ def test_t_junction_in_one_shell_stays_non_manifold(client, tmp_path):
 def test_disconnected_faces_in_one_shell_are_reported_invalid(client):
     far = rectangle((0, 0, 10), (6, 0, 10), (6, 4, 10), (0, 4, 10))
     f = fused(client, horizontal(), far)
-    assert client.ok("make_shells", handle=f["handle"], shells=[[0, 1]])["valid"] is False
-    assert client.ok("make_shells", handle=f["handle"], shells=[[0], [1]])["valid"] is True
+    assert client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[[0, 1]])["valid"] is False
+    assert client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[[0], [1]])["valid"] is True
 
 
 def test_no_shells_give_an_empty_compound_that_writes(client, tmp_path):
     f = fused(client, horizontal(), vertical(1.0))
-    ok = client.ok("make_shells", handle=f["handle"], shells=[])
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[])
     assert ok["faces"] == [] and ok["valid"] is True
     path = tmp_path / "empty.step"
     assert client.ok("write_step", path=str(path), handle=ok["handle"], faces=[])["bytes"] > 0
@@ -121,11 +125,35 @@ def test_no_shells_give_an_empty_compound_that_writes(client, tmp_path):
 )
 def test_bad_arguments(client, shells, needle):
     f = fused(client, horizontal(), vertical(1.0))
-    err = client.err("make_shells", handle=f["handle"], shells=shells)
+    err = client.err("make_shells", handle=f["handle"], fuzzy=1e-6, shells=shells)
     assert err["code"] == "bad_args"
     assert needle in err["message"]
 
 
 @pytest.mark.parametrize("handle", [0, -3, 99])
 def test_bad_handles(client, handle):
-    assert client.err("make_shells", handle=handle, shells=[])["code"] == "bad_args"
+    assert client.err("make_shells", handle=handle, fuzzy=1e-6, shells=[])["code"] == "bad_args"
+
+
+def tube_and_lid():
+    """A closed tube face (radius 10, height 20, seam at angle 0) and a plane disc face closing its top."""
+    tube = BRepBuilderAPI_MakeFace(gp_Cylinder(gp_Ax3(), 10.0), 0.0, 2 * math.pi, 0.0, 20.0).Face()
+    rim = BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(0, 0, 20), gp.DZ_s()), 10.0)).Edge()
+    lid = BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 20), gp.DZ_s()), BRepBuilderAPI_MakeWire(rim).Wire()).Face()
+    return tube, lid
+
+
+def test_a_closed_tube_is_split_at_its_seam_so_no_edge_is_used_by_one_face_inside(client):
+    tube, lid = tube_and_lid()
+    f = fused(client, tube, lid)
+    seam = [e for e in f["edges"] if len(e["faces"]) == 2 and e["faces"][0] == e["faces"][1]]
+    assert len(seam) == 1, "the fuse lists the seam's face twice: it is no free edge"
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[list(range(len(f["faces"])))])
+    assert ok["valid"] is True
+    shells = client.session.store.get(ok["handle"])
+    assert len(ok["faces"]) == 3, "tube halves and lid"
+    assert sorted(ok["faces"]) == [0, 0, 1] or sorted(ok["faces"]) == [0, 1, 1]
+    # Free edges only at the tube's open bottom (split in two); seam, isoline and rim are shared.
+    per_edge = faces_per_edge(shells)
+    assert per_edge.count(1) == 2 and all(n == 2 for n in per_edge if n != 1)
+    assert sum(face_areas(shells)) == pytest.approx(2 * math.pi * 10 * 20 + math.pi * 100)

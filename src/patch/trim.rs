@@ -73,9 +73,10 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             if !others.is_empty() {
                 crossing.extend(others);
                 lines.push(&edge.points);
-            } else if edge.faces.len() > 1 {
+            } else if edge.faces.iter().any(|&g| g != i) {
                 own.push(e);
             } else {
+                // A free edge, or a seam (listed twice for this face): the piece's boundary goes on past it.
                 hanging = true;
             }
         }

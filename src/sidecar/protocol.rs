@@ -103,6 +103,7 @@ pub enum Request {
     MakeShells {
         handle: u64,
         shells: Vec<Vec<usize>>,
+        fuzzy: f64,
     },
     ProbeEdges {
         handle: u64,
@@ -380,8 +381,8 @@ mod tests {
                 r#"{"id":0,"op":"fuse","args":{"patches":[3,4],"fuzzy":0.001}}"#,
             ),
             (
-                Request::MakeShells { handle: 9, shells: vec![vec![0, 1], vec![2]] },
-                r#"{"id":0,"op":"make_shells","args":{"handle":9,"shells":[[0,1],[2]]}}"#,
+                Request::MakeShells { handle: 9, shells: vec![vec![0, 1], vec![2]], fuzzy: 0.5 },
+                r#"{"id":0,"op":"make_shells","args":{"handle":9,"shells":[[0,1],[2]],"fuzzy":0.5}}"#,
             ),
             (
                 Request::ProbeEdges {
