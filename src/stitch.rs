@@ -327,9 +327,9 @@ fn grow(
     Ok(Some((again, keep, branches)))
 }
 
-/// The quads bridging loose edges across thickness steps (`joint::step_bridges`), each owned by its
-/// `owner` edge's patch, with its joint key and the lengths of both edges; the edges left alone are tallied as having
-/// no partner.
+/// The quads bridging loose edges across thickness steps (`joint::step_bridges`), each owned by its `owner`
+/// edge's patch, with its joint key and the lengths of both edges; the edges left alone are tallied as having no
+/// partner.
 fn step_quads(
     loose: &[(usize, &EdgeProbe, f64)],
     thickness: &[f64],
