@@ -92,18 +92,24 @@ def main(inp, out):
     sample_patch = np.array([patch_of.get(int(f), "") for f in fo[tidx]])
     agree = total = 0.0
     patches_ok = patches = 0
+    misses = []
     for patch, named in named_t.items():
         m = (sample_patch == patch) & ok
         if m.sum() < 3:
             continue
         a = sum(area[f] for f, p in patch_of.items() if p == patch)
-        good = abs(float(np.median((up + dn)[m])) - named) <= 0.02 * named
+        measured = float(np.median((up + dn)[m]))
+        good = abs(measured - named) <= 0.02 * named
+        if not good:
+            misses.append((a, patch, named, measured))
         total += a
         agree += a if good else 0.0
         patches += 1
         patches_ok += good
     print(f"patches: median measured thickness within 2% of the reported one: {patches_ok}/{patches} patches, "
           f"{agree / total * 100 if total else 0:.1f}% of the named area")
+    for a, patch, named, measured in sorted(misses, reverse=True):
+        print(f"  miss {patch:<10} area {a:9.2f}  reported {named:.3f}  measured median {measured:.3f}")
     for r in rows[: int(sys.argv[3]) if len(sys.argv) > 3 else 25]:
         print(f"face {r[1]:4d}  {r[2]:<22} area {r[3]:10.2f}  mid {r[0]:.3f}  t_measured {r[4]:.3f}")
 
