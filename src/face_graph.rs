@@ -177,6 +177,17 @@ impl FaceGraph {
         }
     }
 
+    /// Mean width of a face, 2 x area / perimeter: the width of a long band, the radius of a disc. Unbounded
+    /// for a face without edges (a hand-made graph's): nothing says it is narrow.
+    pub fn face_width(&self, face: FaceId) -> f64 {
+        let perimeter: f64 = self.faces[face].loops.iter().flatten().map(|&e| self.edges[e].length).sum();
+        if perimeter > 0.0 {
+            2.0 * self.faces[face].area / perimeter
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// Faces adjacent to `face` through an edge (excluding itself), sorted and deduplicated.
     pub fn neighbours(&self, face: FaceId) -> Vec<FaceId> {
         let mut out: Vec<FaceId> = self.faces[face]

@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::overlap::{self, Overlap};
 use super::{Pair, PairKind, Rejection, Thickness};
-use crate::face_graph::{Face, FaceGraph, FaceId, Surface};
+use crate::face_graph::{Convexity, Face, FaceGraph, FaceId, Surface};
 use crate::geom::angle_between;
 use crate::tolerance::Tolerances;
 
@@ -62,7 +62,43 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
         (sa, sb) if sa.is_freeform() || sb.is_freeform() => sampled_pair(fa, fb, PairKind::Freeform, None, tol)?,
         (sa, sb) => return Err(Rejection::Incompatible { kinds: [sa.kind_name(), sb.kind_name()] }),
     };
+    reject_stub(graph, [a, b], thickness.mean)?;
     Ok(Pair { faces: [a.min(b), a.max(b)], kind, thickness, overlap_area })
+}
+
+/// A planar face narrower than the wall is thick and standing proud of its surroundings (no concave edge) is
+/// the top of a stub (a land between two shallow pockets, a bead), not a skin of a wall: the stub's material
+/// belongs to the wall it stands on, whose patch runs on beneath it. Width is 2 x area / perimeter (the width
+/// of a band). A narrow strip between two ribs stays paired: its edges to the ribs are concave.
+fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64) -> Result<(), Rejection> {
+    for f in faces {
+        let face = &graph.faces[f];
+        if !matches!(face.surface, Surface::Plane { .. }) {
+            return Ok(());
+        }
+    }
+    let widths = faces.map(|f| graph.face_width(f));
+    let narrow = if widths[0] <= widths[1] { 0 } else { 1 };
+    let face = &graph.faces[faces[narrow]];
+    let proud = || face.loops.iter().flatten().all(|&e| graph.edges[e].convexity != Convexity::Concave);
+    if widths[narrow] < thickness && proud() {
+        return Err(Rejection::Stub { width: widths[narrow], thickness, top: true });
+    }
+    Ok(())
+}
+
+/// Two planar faces no wider than they stand apart and joined by a skin of another wall (the top face a
+/// land between two pockets belongs to) are the sides of a stub, not a wall: rejected after every pair is
+/// known. Narrow sides joined only by thickness faces (a short tab's edge faces) stay a wall.
+pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Rejection> {
+    let planar = pair.faces.iter().all(|&f| matches!(graph.faces[f].surface, Surface::Plane { .. }));
+    let width = pair.faces.iter().map(|&f| graph.face_width(f)).fold(0.0, f64::max);
+    if !planar || width >= pair.thickness.mean {
+        return None;
+    }
+    let [a, b] = pair.faces.map(|f| graph.neighbours(f));
+    let joined_by_skin = a.iter().any(|f| skins[*f] && b.binary_search(f).is_ok());
+    joined_by_skin.then_some(Rejection::Stub { width, thickness: pair.thickness.mean, top: false })
 }
 
 fn mesh(face: &Face) -> Result<&crate::face_graph::Mesh, Rejection> {

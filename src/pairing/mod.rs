@@ -103,6 +103,13 @@ pub enum Rejection {
         min: f64,
         max: f64,
     },
+    /// Both faces are narrower than the distance between them (the sides of a stub, not a wall), or
+    /// (`top`) the narrower one is a planar face standing proud, the top of a stub.
+    Stub {
+        width: f64,
+        thickness: f64,
+        top: bool,
+    },
 }
 
 impl Rejection {
@@ -116,6 +123,7 @@ impl Rejection {
             Rejection::Distance { .. } => 5,
             Rejection::Overlap { .. } => 6,
             Rejection::Spread { .. } => 7,
+            Rejection::Stub { .. } => 8,
         }
     }
 
@@ -139,6 +147,12 @@ impl Rejection {
                 format!("overlap {:.1}% < {:.1}%", share * 100.0, limit * 100.0)
             }
             Rejection::Spread { min, max } => format!("distance varies {min:.4}..{max:.4}"),
+            Rejection::Stub { width, thickness, top: false } => {
+                format!("faces at most {width:.4} wide, {thickness:.4} apart: the sides of a stub, not a wall")
+            }
+            Rejection::Stub { width, thickness, top: true } => {
+                format!("a face {width:.4} wide standing proud, {thickness:.4} from its partner: the top of a stub")
+            }
         }
     }
 }
@@ -195,6 +209,25 @@ pub fn detect(graph: &FaceGraph, tol: &Tolerances, pairable: &[bool]) -> Pairing
             }
         }
     }
+    // The faces that join the sides of a stub: the skins of walls, and the stubs' own tops.
+    let mut skins = vec![false; graph.faces.len()];
+    for pair in &pairs {
+        pair.faces.iter().for_each(|&f| skins[f] = true);
+    }
+    for (face, miss) in near.iter().enumerate() {
+        if let Some(NearMiss { rejection: Rejection::Stub { top: true, .. }, .. }) = miss {
+            skins[face] = true;
+        }
+    }
+    pairs.retain(|pair| match criteria::stub_sides(graph, pair, &skins) {
+        None => true,
+        Some(rejection) => {
+            for (me, other) in [(pair.faces[0], pair.faces[1]), (pair.faces[1], pair.faces[0])] {
+                near[me] = Some(NearMiss { candidate: other, rejection: rejection.clone() });
+            }
+            false
+        }
+    });
     let (groups, roles) = groups::group_and_classify(graph, &pairs, &near, pairable);
     Pairing { pairs, groups, roles }
 }

@@ -308,3 +308,89 @@ fn t_max_estimate_from_the_dominant_wall() {
     assert_eq!(e.dominant, Some(2.0));
     assert!((e.t_max - 3.0).abs() < 1e-9, "{e:?}");
 }
+
+/// Faces 0 and 1: a land's sides (y = 10 facing -y, y = 11 facing +y), 20 long and 0.9 tall over z 2.0..2.9.
+fn land_sides() -> Vec<Face> {
+    vec![
+        rect(DVec3::new(0.0, 10.0, 2.0), DVec3::Z * 0.9, DVec3::X * 20.0, -DVec3::Y),
+        rect(DVec3::new(0.0, 11.0, 2.0), DVec3::X * 20.0, DVec3::Z * 0.9, DVec3::Y),
+    ]
+}
+
+/// The graph of `faces` with each edge as long as given (the perimeters the widths are measured on).
+fn graph_with_lengths(faces: Vec<Face>, adjacent: &[(usize, usize, Convexity, f64)]) -> crate::face_graph::FaceGraph {
+    let edges: Vec<(usize, usize, Convexity)> = adjacent.iter().map(|&(a, b, c, _)| (a, b, c)).collect();
+    let mut g = synthetic::graph(faces, &edges);
+    for (edge, &(_, _, _, length)) in g.edges.iter_mut().zip(adjacent) {
+        edge.length = length;
+    }
+    g
+}
+
+#[test]
+fn the_sides_of_a_land_between_pockets_are_no_wall() {
+    // A 2.9 plate (back 2, top 3) with a pocket each side of the land (floors 4 and 5 at z = 2.0, 2.0 thick):
+    // the land's sides stand 1.0 apart but are 0.9 tall, and the plate's top joins them. Whether the land's top
+    // is a face of its own (then the narrow top of a stub) or part of the plate's top skin, the sides do not
+    // pair; the plate's back pairs with the floors (and with the top when that is a skin).
+    for top_is_skin in [false, true] {
+        let mut faces = land_sides();
+        let top = if top_is_skin { (60.0, 40.0) } else { (20.0, 1.0) };
+        faces.extend([
+            rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+            rect(DVec3::new(0.0, 10.0, 2.9), DVec3::X * top.0, DVec3::Y * top.1, DVec3::Z),
+            rect(DVec3::new(0.0, 0.0, 2.0), DVec3::X * 20.0, DVec3::Y * 10.0, DVec3::Z),
+            rect(DVec3::new(0.0, 11.0, 2.0), DVec3::X * 20.0, DVec3::Y * 10.0, DVec3::Z),
+        ]);
+        let mut edges = vec![
+            (0, 3, Convexity::Convex, 20.0),
+            (1, 3, Convexity::Convex, 20.0),
+            (0, 4, Convexity::Concave, 20.0),
+            (1, 5, Convexity::Concave, 20.0),
+        ];
+        if top_is_skin {
+            // The rest of the plate top's outline.
+            edges.push((3, 2, Convexity::Convex, 200.0));
+        }
+        let pairing = detect(&graph_with_lengths(faces, &edges), &tol(), &[true; 6]);
+        let paired: Vec<[usize; 2]> = pairing.pairs.iter().map(|p| p.faces).collect();
+        let expected = if top_is_skin { vec![[2, 3], [2, 4], [2, 5]] } else { vec![[2, 4], [2, 5]] };
+        assert_eq!(paired, expected, "top is a skin: {top_is_skin}");
+        assert!(pairing.roles[..2].iter().all(|r| !matches!(r, FaceRole::Pair { .. })), "{:?}", pairing.roles);
+    }
+}
+
+#[test]
+fn a_short_tab_joined_only_by_its_edge_faces_stays_a_wall() {
+    // The same two sides, joined by a top that pairs with nothing: a tab 1.0 thick and 0.9 wide.
+    let mut faces = land_sides();
+    faces.push(rect(DVec3::new(0.0, 10.0, 2.9), DVec3::X * 20.0, DVec3::Y * 1.0, DVec3::Z));
+    let long = |a, b, c| (a, b, c, 20.0);
+    let g = graph_with_lengths(faces, &[long(0, 2, Convexity::Convex), long(1, 2, Convexity::Convex)]);
+    let pairing = detect(&g, &tol(), &[true; 3]);
+    assert_eq!(pairing.pairs.iter().map(|p| p.faces).collect::<Vec<_>>(), vec![[0, 1]]);
+}
+
+#[test]
+fn a_narrow_face_standing_proud_is_the_top_of_a_stub_not_a_skin() {
+    // A strip 0.8 wide at 2.9 over a plate's back: with every edge convex it tops a bead and does not pair;
+    // with a concave edge (a strip between two ribs) it is a skin of the plate.
+    let strip = || {
+        vec![
+            rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+            rect(DVec3::new(0.0, 10.0, 2.9), DVec3::X * 20.0, DVec3::Y * 0.8, DVec3::Z),
+            rect(DVec3::new(0.0, 10.0, 2.0), DVec3::Z * 0.9, DVec3::X * 20.0, -DVec3::Y),
+        ]
+    };
+    for (convexity, pairs) in [(Convexity::Convex, 0), (Convexity::Concave, 1)] {
+        let g = graph_with_lengths(strip(), &[(1, 2, convexity, 20.0), (1, 0, Convexity::Convex, 20.0)]);
+        let pairing = detect(&g, &tol(), &[true; 3]);
+        assert_eq!(pairing.pairs.len(), pairs, "{convexity:?}");
+        if pairs == 0 {
+            assert!(matches!(
+                &pairing.roles[1],
+                FaceRole::Unpaired { near_miss: Some(NearMiss { rejection: Rejection::Stub { top: true, .. }, .. }) }
+            ));
+        }
+    }
+}
