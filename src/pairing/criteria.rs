@@ -71,11 +71,8 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
 /// belongs to the wall it stands on, whose patch runs on beneath it. Width is 2 x area / perimeter (the width
 /// of a band). A narrow strip between two ribs stays paired: its edges to the ribs are concave.
 fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64) -> Result<(), Rejection> {
-    for f in faces {
-        let face = &graph.faces[f];
-        if !matches!(face.surface, Surface::Plane { .. }) {
-            return Ok(());
-        }
+    if !all_planar(graph, &faces) {
+        return Ok(());
     }
     let widths = faces.map(|f| graph.face_width(f));
     let narrow = if widths[0] <= widths[1] { 0 } else { 1 };
@@ -91,14 +88,17 @@ fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64) -> Result<
 /// land between two pockets belongs to) are the sides of a stub, not a wall: rejected after every pair is
 /// known. Narrow sides joined only by thickness faces (a short tab's edge faces) stay a wall.
 pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Rejection> {
-    let planar = pair.faces.iter().all(|&f| matches!(graph.faces[f].surface, Surface::Plane { .. }));
     let width = pair.faces.iter().map(|&f| graph.face_width(f)).fold(0.0, f64::max);
-    if !planar || width >= pair.thickness.mean {
+    if !all_planar(graph, &pair.faces) || width >= pair.thickness.mean {
         return None;
     }
     let [a, b] = pair.faces.map(|f| graph.neighbours(f));
     let joined_by_skin = a.iter().any(|f| skins[*f] && b.binary_search(f).is_ok());
     joined_by_skin.then_some(Rejection::Stub { width, thickness: pair.thickness.mean, top: false })
+}
+
+fn all_planar(graph: &FaceGraph, faces: &[FaceId]) -> bool {
+    faces.iter().all(|&f| matches!(graph.faces[f].surface, Surface::Plane { .. }))
 }
 
 fn mesh(face: &Face) -> Result<&crate::face_graph::Mesh, Rejection> {

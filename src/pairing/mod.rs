@@ -209,7 +209,8 @@ pub fn detect(graph: &FaceGraph, tol: &Tolerances, pairable: &[bool]) -> Pairing
             }
         }
     }
-    // The faces that join the sides of a stub: the skins of walls, and the stubs' own tops.
+    // The faces that can join the sides of a stub: the skins of walls, and the stubs' own tops (a top's near
+    // miss also lands on its partner, which is a skin of the wall beneath anyway).
     let mut skins = vec![false; graph.faces.len()];
     for pair in &pairs {
         pair.faces.iter().for_each(|&f| skins[f] = true);
