@@ -67,13 +67,17 @@ def fuse(patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool = False
         if inputs.Size() == 1:
             maker.Add(fused, inputs.FindKey(1))
         patch_of = input_patch
+        face_map = indexed_map(fused, TopAbs_FACE)
     else:
         builder = general_fuse([inputs.FindKey(i + 1) for i in range(inputs.Size())], fuzzy)
         fused = builder.Shape()
-        patch_of = _trace_patches(builder, inputs, input_patch, indexed_map(fused, TopAbs_FACE))
+        face_map = indexed_map(fused, TopAbs_FACE)
+        patch_of = _trace_patches(builder, inputs, input_patch, face_map)
     if split_internal:
-        fused, patch_of = _split_faces(fused, patch_of, _internal_edge_lines(fused), fuzzy)
-    return fused, _describe(fused, patch_of)
+        split_fused, patch_of = _split_faces(fused, face_map, patch_of, _internal_edge_lines(face_map), fuzzy)
+        if split_fused is not fused:
+            fused, face_map = split_fused, indexed_map(split_fused, TopAbs_FACE)
+    return fused, _describe(fused, face_map, patch_of)
 
 
 def general_fuse(faces: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
@@ -91,11 +95,11 @@ def general_fuse(faces: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
     return builder
 
 
-def _internal_edge_lines(fused: TopoDS_Shape) -> list[TopoDS_Shape]:
+def _internal_edge_lines(face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
     """A T-joint that stops inside a face (a rib ending part way up a wall) is an INTERNAL edge of that face,
     which STEP cannot carry: the face is split along the edge's line, through to its boundary, so the joint is
-    a boundary edge shared by the pieces and the stem. Straight edges only; the others stay internal."""
-    face_map = indexed_map(fused, TopAbs_FACE)
+    a boundary edge shared by the pieces and the stem. Straight edges only; the others stay internal.
+    `face_map`: the faces of the fused shape."""
     tools = []
     for i in range(face_map.Size()):
         face = TopoDS.Face(face_map.FindKey(i + 1))
@@ -114,17 +118,18 @@ def _internal_edge_lines(fused: TopoDS_Shape) -> list[TopoDS_Shape]:
     return tools
 
 
-def closing_isolines(fused: TopoDS_Shape) -> list[TopoDS_Shape]:
+def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
     """A face closed on itself (a tube's cylinder, a dome's sphere, an elbow's torus) is bounded by its seam
     twice: that edge belongs to one face only, so a mesher or a topology check (the judge) takes it for a free
     edge, a gap in the shell. Split in two along these isolines halfway round, the seam and the isoline each
     join the two halves. Only for the shells written: split before trimming, a tube's overshoot past a tee
     stayed joined to the rest of its tube along the isoline (salome_pipe)."""
-    face_map = indexed_map(fused, TopAbs_FACE)
     tools = []
-    for i in range(face_map.Size()):
-        face = TopoDS.Face(face_map.FindKey(i + 1))
+    for shape in faces:
+        face = TopoDS.Face(shape)
         surface = BRep_Tool.Surface_s(face)
+        if not (surface.IsUPeriodic() or surface.IsVPeriodic()):
+            continue  # most faces: no need for the UV bounds
         u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
         isolines = []
         if surface.IsUPeriodic() and u1 - u0 >= surface.UPeriod() * (1 - 1e-9):
@@ -149,16 +154,15 @@ def _within(edge: TopoDS_Shape, face: TopoDS_Shape) -> list[TopoDS_Shape]:
 
 
 def _split_faces(
-    fused: TopoDS_Shape, patch_of: list[int], tools: list[TopoDS_Shape], fuzzy: float
+    fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int], tools: list[TopoDS_Shape], fuzzy: float
 ) -> tuple[TopoDS_Shape, list[int]]:
-    """`fused` split by the edges `tools` lying on its faces, each piece keeping its face's patch; unchanged when
-    there are no tools or OCCT gives up (no worse than before)."""
+    """`fused` (its faces `face_map`) split by the edges `tools` lying on its faces, each piece keeping its face's
+    patch; `fused` itself when there are no tools or OCCT gives up (no worse than before)."""
     if not tools:
         return fused, patch_of
     splitter = split(fused, tools, fuzzy)
     if splitter is None:
         return fused, patch_of
-    face_map = indexed_map(fused, TopAbs_FACE)
     result = splitter.Shape()
     result_map = indexed_map(result, TopAbs_FACE)
     split_patch: list[int | None] = [None] * result_map.Size()
@@ -179,18 +183,17 @@ def _split_faces(
     return faces_only, split_patch  # type: ignore[return-value]
 
 
-def _describe(fused: TopoDS_Shape, patch_of: list[int]) -> dict[str, Any]:
-    """The reply's `faces` (patch_of: the patch of each face of F) and `edges`."""
-    face_map = indexed_map(fused, TopAbs_FACE)
+def _describe(fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int]) -> dict[str, Any]:
+    """The reply's `faces` (face_map: the faces of F; patch_of: the patch of each) and `edges`."""
     edge_map = indexed_map(fused, TopAbs_EDGE)
     edge_faces: list[list[int]] = [[] for _ in range(edge_map.Size())]
     faces = []
     for i in range(face_map.Size()):
         face = TopoDS.Face(face_map.FindKey(i + 1))
-        edges = _face_edges(face, edge_map)
+        edges, seams = _face_edges(face, edge_map)
         for e in edges:
             edge_faces[e].append(i)
-            if BRep_Tool.IsClosed_s(TopoDS.Edge(edge_map.FindKey(e + 1)), face):
+            if e in seams:
                 edge_faces[e].append(i)  # a seam joins the face to itself
         try:
             faces.append({"patch": patch_of[i], **measure(face), "edges": edges})
@@ -235,16 +238,17 @@ def _trace_patches(
     return patch_of  # type: ignore[return-value]
 
 
-def _face_edges(face: TopoDS_Shape, edge_map: IndexedShapeMap) -> list[int]:
-    """Edge indices of the face in explorer order, a seam (the same edge twice) once."""
-    edges: list[int] = []
+def _face_edges(face: TopoDS_Shape, edge_map: IndexedShapeMap) -> tuple[list[int], set[int]]:
+    """(edge indices of the face in explorer order, a seam once; the seams). A seam is an edge the face uses
+    twice (once each way). Not BRep_Tool.IsClosed: a piece of a split tube keeps both pcurves on the old seam
+    edge although it uses it once, where it is a boundary like any other."""
+    uses: dict[int, int] = {}
     explorer = TopExp_Explorer(face, TopAbs_EDGE)
     while explorer.More():
         e = edge_map.FindIndex(explorer.Current()) - 1
-        if e not in edges:
-            edges.append(e)
+        uses[e] = uses.get(e, 0) + 1
         explorer.Next()
-    return edges
+    return list(uses), {e for e, n in uses.items() if n > 1}
 
 
 def _describe_edge(edge: TopoDS_Edge, faces: list[int]) -> dict[str, Any]:

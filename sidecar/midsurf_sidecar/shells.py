@@ -54,12 +54,14 @@ def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dic
     whose shared edge was split is rebuilt, Modified); nothing is split when none is closed or OCCT gives up
     (the seams stay)."""
     unsplit = {i: [face_map.FindKey(i + 1)] for i in face_ids}
+    tools = closing_isolines([faces[0] for faces in unsplit.values()])
+    if not tools:
+        return unsplit
     kept, builder = TopoDS_Compound(), BRep_Builder()
     builder.MakeCompound(kept)
     for faces in unsplit.values():
         builder.Add(kept, faces[0])
-    tools = closing_isolines(kept)
-    splitter = split(kept, tools, fuzzy) if tools else None
+    splitter = split(kept, tools, fuzzy)
     if splitter is None:
         return unsplit
     pieces = {i: list(splitter.Modified(faces[0])) or faces for i, faces in unsplit.items()}

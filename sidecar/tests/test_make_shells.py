@@ -157,3 +157,14 @@ def test_a_closed_tube_is_split_at_its_seam_so_no_edge_is_used_by_one_face_insid
     per_edge = faces_per_edge(shells)
     assert per_edge.count(1) == 2 and all(n == 2 for n in per_edge if n != 1)
     assert sum(face_areas(shells)) == pytest.approx(2 * math.pi * 10 * 20 + math.pi * 100)
+
+
+def test_a_tube_cut_through_its_seam_has_no_seam_left(client):
+    # A plane through the axis and the seam splits the tube into two halves, each using the old seam edge once:
+    # that edge is a boundary shared by the halves (and the plane), never listed as a face joined to itself.
+    tube, _ = tube_and_lid()
+    cut = BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 0), gp.DY_s()), -30.0, 30.0, -30.0, 30.0).Face()
+    f = fused(client, tube, cut)
+    assert not [e for e in f["edges"] if len(e["faces"]) != len(set(e["faces"]))]
+    seam_line = [e for e in f["edges"] if all(abs(p[0] - 10.0) < 1e-6 and abs(p[1]) < 1e-6 for p in e["points"])]
+    assert seam_line and all(len(set(e["faces"])) == 3 for e in seam_line), seam_line
