@@ -7,7 +7,7 @@ from typing import Any
 
 from OCP.BRep import BRep_Builder
 from OCP.BRepTools import BRepTools, BRepTools_ReShape
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
@@ -16,7 +16,7 @@ from .face_clip import clip_to_partners
 from .face_measure import measure
 from .face_offset import offset_face
 from .face_projection import project_face
-from .topology import IndexedShapeMap, indexed_map
+from .topology import IndexedShapeMap
 from .vectors import Vec
 
 FaceMaker = Callable[[TopoDS_Face], TopoDS_Face]
@@ -44,15 +44,15 @@ class Options:
 
 
 def offset_patch(
-    solid: TopoDS_Shape, face_ids: list[int], distance: float, options: Options = Options()
+    face_map: IndexedShapeMap, face_ids: list[int], distance: float, options: Options = Options()
 ) -> tuple[TopoDS_Compound, list, int]:
-    return _patch(solid, face_ids, lambda face: offset_face(face, distance), options)
+    return _patch(face_map, face_ids, lambda face: offset_face(face, distance), options)
 
 
 def projected_patch(
-    solid: TopoDS_Shape, face_ids: list[int], origin: Vec, normal: Vec, options: Options = Options()
+    face_map: IndexedShapeMap, face_ids: list[int], origin: Vec, normal: Vec, options: Options = Options()
 ) -> tuple[TopoDS_Compound, list, int]:
-    return _patch(solid, face_ids, lambda face: project_face(face, origin, normal), options)
+    return _patch(face_map, face_ids, lambda face: project_face(face, origin, normal), options)
 
 
 def fill_loops(face: TopoDS_Face, edges: list[TopoDS_Shape]) -> tuple[TopoDS_Face, int]:
@@ -80,11 +80,10 @@ def fill_loops(face: TopoDS_Face, edges: list[TopoDS_Shape]) -> tuple[TopoDS_Fac
 
 
 def _patch(
-    solid: TopoDS_Shape, face_ids: list[int], make: FaceMaker, options: Options
+    face_map: IndexedShapeMap, face_ids: list[int], make: FaceMaker, options: Options
 ) -> tuple[TopoDS_Compound, list[dict[str, Any]], int]:
     """(compound of the new faces, the reply's `faces`: one entry per face made, several per source face when
     a clip splits it, inner loops filled); OpError `patch_failed` naming the face."""
-    face_map: IndexedShapeMap = indexed_map(solid, TopAbs_FACE)
     clip = options.clip
     builder = BRep_Builder()
     compound = TopoDS_Compound()

@@ -59,7 +59,8 @@ def describe(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
 
 def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     solid = store.get(require_handle(args))
-    count = indexed_map(solid, TopAbs_FACE).Size()
+    face_map = indexed_map(solid, TopAbs_FACE)
+    count = face_map.Size()
     face_ids = index_list(args.get("faces"), count, "face", "the solid")
     if not face_ids:
         raise BadArgs("`faces` must list at least one face")
@@ -71,11 +72,11 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         raise BadArgs("`reverse` must be true or false")
     options = mid_patch.Options(clip, reverse, _fill_edges(solid, args))
     if "offset" in args:
-        patch, faces, filled = mid_patch.offset_patch(solid, face_ids, require_number(args, "offset"), options)
+        patch, faces, filled = mid_patch.offset_patch(face_map, face_ids, require_number(args, "offset"), options)
     else:
         plane = require_object(args, "plane")
         origin, normal = require_point(plane, "origin"), require_direction(plane, "normal")
-        patch, faces, filled = mid_patch.projected_patch(solid, face_ids, origin, normal, options)
+        patch, faces, filled = mid_patch.projected_patch(face_map, face_ids, origin, normal, options)
     return {"handle": store.put(patch), "faces": faces, "filled": filled}
 
 
