@@ -6,9 +6,24 @@ mod common;
 
 use common::{midsurf, outcome, scratch};
 use serde_json::Value;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+
+type Twin = (String, Vec<(String, f64)>);
+
+/// `run_once`'s result, shared: the tests run in parallel and several compare against the same twin, which is
+/// then run once (one scratch directory per fixture, never written by two tests at a time).
+fn run(fixture: &str) -> Twin {
+    static RUNS: OnceLock<Mutex<HashMap<String, Arc<OnceLock<Twin>>>>> = OnceLock::new();
+    let slot = {
+        let mut runs = RUNS.get_or_init(Default::default).lock().unwrap();
+        Arc::clone(runs.entry(fixture.to_string()).or_default())
+    };
+    slot.get_or_init(|| run_once(fixture)).clone()
+}
 
 /// The topology summary with the source face ids left out, and the suppressed features as (kind, size).
-fn run(fixture: &str) -> (String, Vec<(String, f64)>) {
+fn run_once(fixture: &str) -> Twin {
     let dir = scratch(&format!("twins-{fixture}"));
     let (out, summary, report) = (dir.join("mid.step"), dir.join("s.txt"), dir.join("r.json"));
     let o = outcome(
