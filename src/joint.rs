@@ -179,7 +179,7 @@ const STEP_PARALLEL_DEG: f64 = 5.0;
 /// an upright quad: a shell mesher merges it into the thickness change, while the ramp's cut through the
 /// thicker patch drops every piece of it narrower than the run, with whatever joins there (a 0.15 mm step on
 /// fw13_top_cover's 2.7 mm boss cut off one of its joints).
-const STEP_LEVEL_SHARE: f64 = 0.1;
+const STEP_LEVEL_SHARE: f64 = crate::tolerance::RIM_SHARE;
 
 /// The thin edge spans the thick edge when it runs along this share of it.
 const STEP_SPAN_SHARE: f64 = 0.99;

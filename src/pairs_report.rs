@@ -60,7 +60,8 @@ impl SolidPairing {
 }
 
 /// Pairs one solid: a first pairing with every face gives the roles the feature recognition needs (a fillet
-/// is a round that did not pair), then the features' faces are left out and the solid is paired again.
+/// is a round that did not pair), then the features' faces are left out and the solid is paired again, from
+/// the same tested candidates.
 pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
     let draft_max = params.draft_max_deg.to_radians();
     let estimate = estimate_t_max(graph, draft_max);
@@ -70,12 +71,13 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
     };
     let tolerances = Tolerances::new(graph.bbox.diagonal(), t_max, draft_max);
     let limits = params.limits.resolve(t_max);
-    let first = pairing::detect(graph, &tolerances, &vec![true; graph.faces.len()]);
+    let tested = pairing::test_candidates(graph, &tolerances);
+    let first = pairing::assemble(graph, &tested, &vec![true; graph.faces.len()]);
     let features = features::recognise(graph, &first.roles, &limits, tolerances.coaxial);
     let pairing = if features.is_empty() {
         first
     } else {
-        pairing::detect(graph, &tolerances, &features::pairable(graph.faces.len(), &features))
+        pairing::assemble(graph, &tested, &features::pairable(graph.faces.len(), &features))
     };
     let area_with = |keep: &dyn Fn(&FaceRole) -> bool| -> f64 {
         graph.faces.iter().filter(|f| keep(&pairing.roles[f.id])).map(|f| f.area).sum()

@@ -110,7 +110,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         .map(|m| {
             let tolerances = &pairings[m.solid - 1].tolerances;
             // On a skin the patch a joint grows to may lie up to half a thickness farther than its middle.
-            let skin = if args.position == Position::Mid { 0.0 } else { 0.5 * tolerances.t_max };
+            let skin = args.position.to_mid(tolerances.t_max).abs();
             PatchInfo {
                 thickness: m.plan.thickness.mean,
                 to_mid: m.plan.to_mid,

@@ -163,13 +163,11 @@ pub fn stitch(
     fuzzy: f64,
 ) -> Result<Stitched, SidecarError> {
     let mut tally = JointTally::default();
-    let free = free_edges(fused, keep);
-    let kept: Vec<usize> = (0..fused.faces.len()).filter(|&f| keep[f]).collect();
-    let probes = probe(sidecar, fused, &free, kept, patches)?;
+    let (free, probes) = free_and_probed(sidecar, fused, keep, patches, true)?;
     let grown = grow(sidecar, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
     let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
     // The free edges of the result, probed once for both the rims pass and the final count.
-    let (mut free, mut probes) = free_and_probed(sidecar, &fused, &keep, patches)?;
+    let (mut free, mut probes) = free_and_probed(sidecar, &fused, &keep, patches, false)?;
     let mut counted = classify_free(&fused, &free, &probes, patches, solids);
     if counted.open_edges > 0 {
         if let Some((again, again_keep, more)) =
@@ -177,23 +175,30 @@ pub fn stitch(
         {
             (fused, keep) = (again, again_keep);
             branches.extend(more);
-            (free, probes) = free_and_probed(sidecar, &fused, &keep, patches)?;
+            (free, probes) = free_and_probed(sidecar, &fused, &keep, patches, false)?;
             counted = classify_free(&fused, &free, &probes, patches, solids);
         }
     }
     Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted })
 }
 
-/// The free edges of `fused` (pieces `keep`) and their probes, without meetings.
+/// The free edges of `fused` (pieces `keep`) and their probes, with their meetings with the kept pieces when
+/// `meetings` (a joints pass looks for partners; the rims pass and the final count do not).
 fn free_and_probed(
     sidecar: &mut Sidecar,
     fused: &Fused,
     keep: &[bool],
     patches: &[PatchInfo],
+    meetings: bool,
 ) -> Result<(Vec<(usize, usize)>, Vec<EdgeProbe>), SidecarError> {
     let free = free_edges(fused, keep);
-    let probes = probe(sidecar, fused, &free, Vec::new(), patches)?;
+    let targets = if meetings { kept_faces(keep) } else { Vec::new() };
+    let probes = probe(sidecar, fused, &free, targets, patches)?;
     Ok((free, probes))
+}
+
+fn kept_faces(keep: &[bool]) -> Vec<usize> {
+    (0..keep.len()).filter(|&f| keep[f]).collect()
 }
 
 /// One pass of `stitch` over the free edges `free` of `fused` and their probes (with meetings for a joints
@@ -214,7 +219,6 @@ fn grow(
 ) -> Result<Option<(Fused, Vec<bool>, Vec<Branch>)>, SidecarError> {
     let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
     let patch_of: Vec<usize> = fused.faces.iter().map(|f| f.patch).collect();
-    let kept: Vec<usize> = (0..fused.faces.len()).filter(|&f| keep[f]).collect();
 
     // (patch, strip, joint key, probe) per extended edge; joint keys of the edges with no partner.
     let mut planned: Vec<(usize, StripRequest, JointKey, &EdgeProbe)> = Vec::new();
@@ -296,12 +300,18 @@ fn grow(
         extended_handle = Some(extended.handle);
     }
 
-    // One argument per patch: its kept pieces and its strips.
+    // One argument per patch: its kept pieces and its strips (each list ascending, as found).
+    let mut pieces_of: Vec<Vec<usize>> = vec![Vec::new(); patches.len()];
+    for f in kept_faces(keep) {
+        pieces_of[patch_of[f]].push(f);
+    }
+    let mut strips_of: Vec<Vec<usize>> = vec![Vec::new(); patches.len()];
+    for &(p, j) in &strips {
+        strips_of[p].push(j);
+    }
     let mut order: Vec<usize> = Vec::new();
     let mut handles = Vec::new();
-    for k in 0..patches.len() {
-        let pieces: Vec<usize> = kept.iter().copied().filter(|&f| patch_of[f] == k).collect();
-        let own: Vec<usize> = strips.iter().filter(|(p, _)| *p == k).map(|&(_, j)| j).collect();
+    for (k, (pieces, own)) in pieces_of.into_iter().zip(strips_of).enumerate() {
         let mut parts = Vec::new();
         // Only a patch with strips has faces to merge.
         let unify = (!own.is_empty()).then_some(fuzzy);

@@ -66,5 +66,9 @@ pub fn mesh_tolerance(volume: f64, area: f64) -> f64 {
 /// grow to it: a tenth of the patch's thickness, and never under two chords of the solid's mesh (a curved rim
 /// is met on its mesh, up to a chord's sagitta off the true surface).
 pub fn on_rim(thickness: f64, mesh_tolerance: f64) -> f64 {
-    (0.1 * thickness).max(2.0 * mesh_tolerance)
+    (RIM_SHARE * thickness).max(2.0 * mesh_tolerance)
 }
+
+/// The share of a wall's thickness within which a free edge is on the rim (`on_rim`); a thickness step no
+/// higher than this share of the thinner wall is not laid down into a ramp (`joint::step_bridges`).
+pub const RIM_SHARE: f64 = 0.1;

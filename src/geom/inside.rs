@@ -63,19 +63,19 @@ impl SolidMesh {
 
     /// Distance from `p` along the unit direction `dir` to the nearest mesh triangle, if within `reach`.
     pub fn exit(&self, p: DVec3, dir: DVec3, reach: f64) -> Option<f64> {
-        let end = p + dir * reach;
-        let query = AABB::from_corners(p.min(end).to_array(), p.max(end).to_array());
-        self.tree
-            .locate_in_envelope_intersecting(&query)
-            .filter_map(|t| hit_triangle(p, dir, t.corners))
-            .filter(|&d| d <= reach)
-            .min_by(f64::total_cmp)
+        self.hits(p, dir, reach).filter(|&d| d <= reach).min_by(f64::total_cmp)
     }
 
     fn crossings(&self, p: DVec3, dir: DVec3, reach: f64) -> usize {
+        self.hits(p, dir, reach).count()
+    }
+
+    /// Distances along `dir` from `p` to the triangles the ray meets among those whose boxes touch the segment
+    /// of length `reach`.
+    fn hits(&self, p: DVec3, dir: DVec3, reach: f64) -> impl Iterator<Item = f64> + '_ {
         let end = p + dir * reach;
         let query = AABB::from_corners(p.min(end).to_array(), p.max(end).to_array());
-        self.tree.locate_in_envelope_intersecting(&query).filter(|t| hit_triangle(p, dir, t.corners).is_some()).count()
+        self.tree.locate_in_envelope_intersecting(&query).filter_map(move |t| hit_triangle(p, dir, t.corners))
     }
 }
 

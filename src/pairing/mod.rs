@@ -188,14 +188,31 @@ impl Pairing {
 
 /// Finds the face pairs of a solid. `pairable[f]` false leaves face f out (a suppressed feature).
 pub fn detect(graph: &FaceGraph, tol: &Tolerances, pairable: &[bool]) -> Pairing {
+    assemble(graph, &test_candidates(graph, tol), pairable)
+}
+
+/// A candidate pair of faces and the verdict of the pair tests on it.
+pub type Tested = (FaceId, FaceId, Result<Pair, Rejection>);
+
+/// Every candidate pair of the solid tested, in candidate order. A verdict does not depend on which faces are
+/// pairable, so one list serves every pairing of the solid (before and after its features are left out).
+pub fn test_candidates(graph: &FaceGraph, tol: &Tolerances) -> Vec<Tested> {
+    candidates::candidate_pairs(graph, tol.t_max)
+        .into_iter()
+        .map(|(a, b)| (a, b, criteria::test_pair(graph, a, b, tol)))
+        .collect()
+}
+
+/// The pairing of a solid from its `tested` candidates, leaving out the faces not `pairable`.
+pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool]) -> Pairing {
     let mut pairs = Vec::new();
     let mut near: Vec<Option<NearMiss>> = vec![None; graph.faces.len()];
-    for (a, b) in candidates::candidate_pairs(graph, tol.t_max) {
+    for &(a, b, ref verdict) in tested {
         if !pairable[a] || !pairable[b] {
             continue;
         }
-        match criteria::test_pair(graph, a, b, tol) {
-            Ok(pair) => pairs.push(pair),
+        match verdict {
+            Ok(pair) => pairs.push(pair.clone()),
             Err(rejection) => {
                 for (me, other) in [(a, b), (b, a)] {
                     let better = match &near[me] {

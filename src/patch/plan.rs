@@ -48,7 +48,7 @@ impl Position {
 
     /// From the patch to the middle of its wall, along the patch normal: the joint tests look there, since a
     /// point on a skin is on the solid's boundary and says nothing about the material.
-    fn to_mid(self, t: f64) -> f64 {
+    pub fn to_mid(self, t: f64) -> f64 {
         match self {
             Position::Mid => 0.0,
             Position::Top => -0.5 * t,
