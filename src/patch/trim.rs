@@ -181,6 +181,11 @@ mod tests {
         thickness.iter().map(|&t| branch_limit(t, 0.0)).collect()
     }
 
+    /// The pieces found to be branches of two 2 mm mid patches.
+    fn branch_pieces(fused: &Fused) -> Vec<usize> {
+        find_branches(fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect()
+    }
+
     fn face(patch: usize, area: f64, edges: Vec<usize>) -> FusedFace {
         FusedFace { patch, area, centroid: DVec3::ZERO, normal: DVec3::Z, edges }
     }
@@ -245,7 +250,7 @@ mod tests {
         // Piece 1 of patch 0 loses its free edge: only the crossing line and another crossing bound it.
         let mut fused = l_corner();
         fused.edges[2].faces = vec![1, 2];
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
+        let pieces = branch_pieces(&fused);
         assert_eq!(pieces, vec![3]);
     }
 
@@ -256,7 +261,7 @@ mod tests {
         fused.edges.push(edge(vec![0, 1], DVec3::new(0.5, 0.0, 1.0), DVec3::new(0.5, 40.0, 1.0)));
         fused.faces[0].edges.push(5);
         fused.faces[1].edges.push(5);
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
+        let pieces = branch_pieces(&fused);
         assert_eq!(pieces, vec![3]);
     }
 
@@ -269,13 +274,13 @@ mod tests {
         fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
         fused.edges.push(edge(vec![4], DVec3::new(0.0, 41.0, 1.0), DVec3::new(1.0, 41.0, 1.0)));
         fused.faces[1].edges.push(5);
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
+        let pieces = branch_pieces(&fused);
         assert_eq!(pieces, vec![1, 3, 4]);
         // Joined to the main piece instead (by an edge longer than the overshoot), it stays.
         fused.edges[5] = edge(vec![0, 4], DVec3::new(1.0, 40.0, 1.0), DVec3::new(3.0, 40.0, 1.0));
         fused.faces[1].edges.pop();
         fused.faces[0].edges.push(5);
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
+        let pieces = branch_pieces(&fused);
         assert_eq!(pieces, vec![1, 3]);
     }
 
@@ -287,7 +292,7 @@ mod tests {
         fused.edges.push(edge(vec![4], DVec3::new(0.0, 60.0, 1.0), DVec3::new(20.0, 60.0, 1.0)));
         fused.faces[1].edges.push(5);
         // It is part of the wall: it stays, and anchors the strip joined to it.
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
+        let pieces = branch_pieces(&fused);
         assert_eq!(pieces, vec![3]);
     }
 
@@ -298,7 +303,7 @@ mod tests {
         fused.edges.push(edge(vec![0, 1], DVec3::new(1.0, 40.0, 1.0), DVec3::new(1.0, 40.3, 1.0)));
         fused.faces[0].edges.push(5);
         fused.faces[1].edges.push(5);
-        let pieces: Vec<usize> = find_branches(&fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect();
+        let pieces = branch_pieces(&fused);
         assert_eq!(pieces, vec![1, 3]);
     }
 
