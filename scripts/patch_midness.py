@@ -54,6 +54,22 @@ def face_names(path):
     return names
 
 
+def explorer_names(shape, names):
+    """`names` (MapShapes index -> name) re-keyed by TopExp_Explorer order, the order ev.tessellate numbers faces
+    in. The two differ when the reader puts one face into several shells (it splits a non-manifold shell so)."""
+    fmap = ev.ShapeMap()
+    ev.TopExp.MapShapes_s(shape, TopAbs_FACE, fmap)
+    explorer = ev.TopExp_Explorer(shape, TopAbs_FACE)
+    keyed, k = {}, 0
+    while explorer.More():
+        m = fmap.FindIndex(explorer.Current()) - 1
+        if m in names:
+            keyed[k] = names[m]
+        k += 1
+        explorer.Next()
+    return keyed
+
+
 def main(inp, out):
     solid, mid = ev.read_step(inp), ev.read_step(out)
     d = ev.diag(solid)
@@ -70,7 +86,7 @@ def main(inp, out):
     asym = np.abs(up - dn) / np.where(ok, up + dn, 1)
     tri = Vo[Fo]
     area = np.bincount(fo, weights=0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1))
-    names = face_names(out)
+    names = explorer_names(mid, face_names(out))
     rows = []
     for f in np.unique(fo):
         m = (fo[tidx] == f) & ok
