@@ -155,7 +155,7 @@ pub struct ResultSummary {
 #[derive(Debug, Clone, Serialize)]
 pub struct Warning {
     /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict,
-    /// thickness_step, partial_overlap, joint_failed, stitch_failed, open_edges,
+    /// thickness_step, partial_overlap, joint_failed, stitch_failed, open_edges, invalid_output,
     /// feature_not_suppressed.
     pub code: &'static str,
     pub message: String,

@@ -14,7 +14,7 @@ use crate::patch::plan::{plan_patches, PatchPlan, PlanNote, Position};
 use crate::patch::trim::{connected_sets, find_branches, keep_mask};
 use crate::report::{self, *};
 use crate::sidecar::protocol::{Clip, FaceAttributes, Fused, MadePatch, Request, Shells, Written};
-use crate::stitch::{branch_limits, stitch, JointReport, PatchInfo};
+use crate::stitch::{branch_limits, stitch, FreeEdges, JointReport, PatchInfo};
 
 pub struct RunArgs {
     pub input: PathBuf,
@@ -130,6 +130,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let (fused, keep, joints, free) = match stitch(&mut sidecar, &fused, &keep, &infos, &meshes, fuzzy) {
         Ok(s) => {
             branches.extend(s.branches);
+            warnings.extend(open_edges_warning(&s.free, &s.open_patches));
             (s.fused, s.keep, s.joints, Some(s.free))
         }
         Err(e) if e.code().is_some() => {
@@ -147,6 +148,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let sets = connected_sets(&fused, &keep);
     let shells: Shells =
         sidecar.call(&Request::MakeShells { handle: fused.handle, shells: sets.clone(), fuzzy }).map_err(kernel)?;
+    warnings.extend(invalid_output_warning(&shells, &fused));
     timings.stitch = t.elapsed().as_secs_f64();
 
     let legend = report::legend(&thickness);
@@ -257,6 +259,48 @@ fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
             faces: Vec::new(),
         })
         .collect()
+}
+
+/// Open edges left after stitching are gaps in the mid-surface a mesher would keep: said once, with the patches.
+fn open_edges_warning(free: &FreeEdges, open_patches: &[usize]) -> Option<Warning> {
+    (free.open_edges > 0).then(|| Warning {
+        code: "open_edges",
+        message: format!(
+            "{} free edge(s), {:.3} mm, still lie inside the material after stitching (patches {}): the \
+             mid-surface has gaps there",
+            free.open_edges,
+            free.open_length,
+            patch_list(open_patches)
+        ),
+        solid: None,
+        faces: Vec::new(),
+    })
+}
+
+/// Faces failing the kernel's check are written as they are (readers usually repair them), but a script must
+/// know: said once, with their patches.
+fn invalid_output_warning(shells: &Shells, fused: &Fused) -> Option<Warning> {
+    let mut patches: Vec<usize> = shells.invalid.iter().map(|&j| fused.faces[shells.faces[j]].patch).collect();
+    patches.sort_unstable();
+    patches.dedup();
+    (!shells.valid).then(|| Warning {
+        code: "invalid_output",
+        message: format!(
+            "the mid-surface fails the kernel's validity check (BRepCheck){}: check them before meshing",
+            if patches.is_empty() {
+                String::new()
+            } else {
+                format!(" on {} face(s) of patches {}", shells.invalid.len(), patch_list(&patches))
+            }
+        ),
+        solid: None,
+        faces: Vec::new(),
+    })
+}
+
+/// Patch indices as the ids the output names them by ("patch 3"), comma separated.
+fn patch_list(patches: &[usize]) -> String {
+    patches.iter().map(|k| (k + 1).to_string()).collect::<Vec<_>>().join(", ")
 }
 
 fn plan_warning(solid: usize, note: PlanNote) -> Warning {
@@ -376,5 +420,48 @@ fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidRepo
         unpaired,
         paired_share: sp.paired_share,
         paired_skin_share: sp.paired_skin_share,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sidecar::protocol::FusedFace;
+    use glam::DVec3;
+
+    fn fused(patches: &[usize]) -> Fused {
+        let face =
+            |&patch: &usize| FusedFace { patch, area: 1.0, centroid: DVec3::ZERO, normal: DVec3::Z, edges: vec![] };
+        Fused { handle: 1, faces: patches.iter().map(face).collect(), edges: vec![] }
+    }
+
+    fn shells(faces: Vec<usize>, valid: bool, invalid: Vec<usize>) -> Shells {
+        Shells { handle: 2, faces, valid, invalid, edges: 0, vertices: 0 }
+    }
+
+    #[test]
+    fn invalid_faces_are_named_by_the_patches_they_belong_to() {
+        // Shell face j is fused piece faces[j]; pieces 0..3 belong to patches 4, 4, 0, 2 (ids 5, 5, 1, 3).
+        let fused = fused(&[4, 4, 0, 2]);
+        let w = invalid_output_warning(&shells(vec![3, 0, 1, 2], false, vec![1, 2, 0]), &fused).unwrap();
+        assert_eq!(w.code, "invalid_output");
+        assert!(w.message.contains("on 3 face(s) of patches 3, 5:"), "{}", w.message);
+        assert!(invalid_output_warning(&shells(vec![0, 1, 2, 3], true, vec![]), &fused).is_none());
+        // Invalid as a whole (say, a shell in two pieces) with every face sound: no patch to name.
+        let whole = invalid_output_warning(&shells(vec![0, 1, 2, 3], false, vec![]), &fused).unwrap();
+        assert!(!whole.message.contains("patches"), "{}", whole.message);
+    }
+
+    #[test]
+    fn open_edges_are_said_once_with_their_patches() {
+        let free = FreeEdges { rim_edges: 4, rim_length: 40.0, open_edges: 3, open_length: 2.5 };
+        let w = open_edges_warning(&free, &[0, 6]).unwrap();
+        assert_eq!(w.code, "open_edges");
+        assert!(
+            w.message.starts_with("3 free edge(s), 2.500 mm") && w.message.contains("(patches 1, 7)"),
+            "{}",
+            w.message
+        );
+        assert!(open_edges_warning(&FreeEdges { open_edges: 0, ..free }, &[]).is_none());
     }
 }

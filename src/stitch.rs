@@ -53,6 +53,8 @@ pub struct Stitched {
     pub branches: Vec<Branch>,
     pub joints: Vec<JointReport>,
     pub free: FreeEdges,
+    /// The patches (indices) with an open edge left, sorted.
+    pub open_patches: Vec<usize>,
 }
 
 /// Free edges of the kept faces: (edge, its one kept face), in edge order.
@@ -168,7 +170,7 @@ pub fn stitch(
     let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
     // The free edges of the result, probed once for both the rims pass and the final count.
     let (mut free, mut probes) = free_and_probed(sidecar, &fused, &keep, patches, false)?;
-    let mut counted = classify_free(&fused, &free, &probes, patches, solids);
+    let (mut counted, mut open_patches) = classify_free(&fused, &free, &probes, patches, solids);
     if counted.open_edges > 0 {
         if let Some((again, again_keep, more)) =
             grow(sidecar, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
@@ -176,10 +178,10 @@ pub fn stitch(
             (fused, keep) = (again, again_keep);
             branches.extend(more);
             (free, probes) = free_and_probed(sidecar, &fused, &keep, patches, false)?;
-            counted = classify_free(&fused, &free, &probes, patches, solids);
+            (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
         }
     }
-    Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted })
+    Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches })
 }
 
 /// The free edges of `fused` (pieces `keep`) and their probes, with their meetings with the kept pieces when
@@ -415,27 +417,31 @@ fn corners(planned: &[(usize, StripRequest, JointKey, &EdgeProbe)], fuzzy: f64) 
 }
 
 /// Sorts the free edges of the result into rim and open (the inside test of `decide`, or the edge stopping short
-/// of the boundary by more than the rim tolerance).
+/// of the boundary by more than the rim tolerance); also the patches with an open edge, sorted.
 fn classify_free(
     fused: &Fused,
     free: &[(usize, usize)],
     probes: &[EdgeProbe],
     patches: &[PatchInfo],
     solids: &[SolidMesh],
-) -> FreeEdges {
+) -> (FreeEdges, Vec<usize>) {
     let mut out = FreeEdges::default();
+    let mut open_patches = Vec::new();
     for (&(edge, face), p) in free.iter().zip(probes) {
         let length = fused.edges[edge].length;
         // Short of the rim is open too: the material goes on past the edge, if only for a round's width.
         if open(fused, face, p, patches, solids) || shortfall(fused, face, p, patches, solids).is_some() {
             out.open_edges += 1;
             out.open_length += length;
+            open_patches.push(fused.faces[face].patch);
         } else {
             out.rim_edges += 1;
             out.rim_length += length;
         }
     }
-    out
+    open_patches.sort_unstable();
+    open_patches.dedup();
+    (out, open_patches)
 }
 
 /// Patch ids (sorted), kind, status.

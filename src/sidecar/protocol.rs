@@ -269,6 +269,8 @@ pub struct Shells {
     pub handle: u64,
     pub faces: Vec<usize>,
     pub valid: bool,
+    /// Faces (indices into `faces`) that fail the kernel's check on their own; empty when `valid`.
+    pub invalid: Vec<usize>,
     pub edges: usize,
     pub vertices: usize,
 }
