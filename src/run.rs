@@ -215,7 +215,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
             faces: shells.faces.len(),
             shells: sets.len(),
             valid: shells.valid,
-            area: shells.faces.iter().map(|&p| fused.faces[p].area).sum(),
+            area: written_area(&shells, &fused),
             free_edges: free,
         },
         topology,
@@ -296,6 +296,13 @@ fn invalid_output_warning(shells: &Shells, fused: &Fused) -> Option<Warning> {
         solid: None,
         faces: Vec::new(),
     })
+}
+
+/// The area of the faces written. A face closed on itself is written as two pieces that both name it: count
+/// each fused face once (its pieces make it up exactly).
+fn written_area(shells: &Shells, fused: &Fused) -> f64 {
+    let written: std::collections::BTreeSet<usize> = shells.faces.iter().copied().collect();
+    written.iter().map(|&p| fused.faces[p].area).sum()
 }
 
 /// Patch indices as the ids the output names them by ("patch 3"), comma separated.
@@ -450,6 +457,16 @@ mod tests {
         // Invalid as a whole (say, a shell in two pieces) with every face sound: no patch to name.
         let whole = invalid_output_warning(&shells(vec![0, 1, 2, 3], false, vec![]), &fused).unwrap();
         assert!(!whole.message.contains("patches"), "{}", whole.message);
+    }
+
+    #[test]
+    fn a_face_split_at_its_seam_counts_once_in_the_written_area() {
+        let fused = Fused {
+            faces: [2.0, 3.0, 5.0].iter().map(|&a| FusedFace { area: a, ..fused(&[0]).faces[0].clone() }).collect(),
+            ..fused(&[])
+        };
+        // Fused face 1 (a tube) is written as two pieces, both naming it.
+        assert_eq!(written_area(&shells(vec![0, 1, 1, 2], true, vec![]), &fused), 10.0);
     }
 
     #[test]
