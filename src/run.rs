@@ -1,5 +1,6 @@
 //! `midsurf run`: STEP solid in, mid-surface STEP (a shell per connected set of patches) and report out.
 
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -262,7 +263,7 @@ fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
 }
 
 /// Open edges left after stitching are gaps in the mid-surface a mesher would keep: said once, with the patches.
-fn open_edges_warning(free: &FreeEdges, open_patches: &[usize]) -> Option<Warning> {
+fn open_edges_warning(free: &FreeEdges, open_patches: &BTreeSet<usize>) -> Option<Warning> {
     (free.open_edges > 0).then(|| Warning {
         code: "open_edges",
         message: format!(
@@ -280,9 +281,7 @@ fn open_edges_warning(free: &FreeEdges, open_patches: &[usize]) -> Option<Warnin
 /// Faces failing the kernel's check are written as they are (readers usually repair them), but a script must
 /// know: said once, with their patches.
 fn invalid_output_warning(shells: &Shells, fused: &Fused) -> Option<Warning> {
-    let mut patches: Vec<usize> = shells.invalid.iter().map(|&j| fused.faces[shells.faces[j]].patch).collect();
-    patches.sort_unstable();
-    patches.dedup();
+    let patches: BTreeSet<usize> = shells.invalid.iter().map(|&j| fused.faces[shells.faces[j]].patch).collect();
     (!shells.valid).then(|| Warning {
         code: "invalid_output",
         message: format!(
@@ -301,12 +300,12 @@ fn invalid_output_warning(shells: &Shells, fused: &Fused) -> Option<Warning> {
 /// The area of the faces written. A face closed on itself is written as two pieces that both name it: count
 /// each fused face once (its pieces make it up exactly).
 fn written_area(shells: &Shells, fused: &Fused) -> f64 {
-    let written: std::collections::BTreeSet<usize> = shells.faces.iter().copied().collect();
+    let written: BTreeSet<usize> = shells.faces.iter().copied().collect();
     written.iter().map(|&p| fused.faces[p].area).sum()
 }
 
 /// Patch indices as the ids the output names them by ("patch 3"), comma separated.
-fn patch_list(patches: &[usize]) -> String {
+fn patch_list(patches: &BTreeSet<usize>) -> String {
     patches.iter().map(|k| (k + 1).to_string()).collect::<Vec<_>>().join(", ")
 }
 
@@ -436,10 +435,16 @@ mod tests {
     use crate::sidecar::protocol::FusedFace;
     use glam::DVec3;
 
-    fn fused(patches: &[usize]) -> Fused {
-        let face =
-            |&patch: &usize| FusedFace { patch, area: 1.0, centroid: DVec3::ZERO, normal: DVec3::Z, edges: vec![] };
-        Fused { handle: 1, faces: patches.iter().map(face).collect(), edges: vec![] }
+    /// Fused pieces of the given (patch, area).
+    fn fused(faces: &[(usize, f64)]) -> Fused {
+        let face = |&(patch, area): &(usize, f64)| FusedFace {
+            patch,
+            area,
+            centroid: DVec3::ZERO,
+            normal: DVec3::Z,
+            edges: vec![],
+        };
+        Fused { handle: 1, faces: faces.iter().map(face).collect(), edges: vec![] }
     }
 
     fn shells(faces: Vec<usize>, valid: bool, invalid: Vec<usize>) -> Shells {
@@ -449,7 +454,7 @@ mod tests {
     #[test]
     fn invalid_faces_are_named_by_the_patches_they_belong_to() {
         // Shell face j is fused piece faces[j]; pieces 0..3 belong to patches 4, 4, 0, 2 (ids 5, 5, 1, 3).
-        let fused = fused(&[4, 4, 0, 2]);
+        let fused = fused(&[(4, 1.0), (4, 1.0), (0, 1.0), (2, 1.0)]);
         let w = invalid_output_warning(&shells(vec![3, 0, 1, 2], false, vec![1, 2, 0]), &fused).unwrap();
         assert_eq!(w.code, "invalid_output");
         assert!(w.message.contains("on 3 face(s) of patches 3, 5:"), "{}", w.message);
@@ -461,10 +466,7 @@ mod tests {
 
     #[test]
     fn a_face_split_at_its_seam_counts_once_in_the_written_area() {
-        let fused = Fused {
-            faces: [2.0, 3.0, 5.0].iter().map(|&a| FusedFace { area: a, ..fused(&[0]).faces[0].clone() }).collect(),
-            ..fused(&[])
-        };
+        let fused = fused(&[(0, 2.0), (1, 3.0), (2, 5.0)]);
         // Fused face 1 (a tube) is written as two pieces, both naming it.
         assert_eq!(written_area(&shells(vec![0, 1, 1, 2], true, vec![]), &fused), 10.0);
     }
@@ -472,13 +474,13 @@ mod tests {
     #[test]
     fn open_edges_are_said_once_with_their_patches() {
         let free = FreeEdges { rim_edges: 4, rim_length: 40.0, open_edges: 3, open_length: 2.5 };
-        let w = open_edges_warning(&free, &[0, 6]).unwrap();
+        let w = open_edges_warning(&free, &BTreeSet::from([6, 0])).unwrap();
         assert_eq!(w.code, "open_edges");
         assert!(
             w.message.starts_with("3 free edge(s), 2.500 mm") && w.message.contains("(patches 1, 7)"),
             "{}",
             w.message
         );
-        assert!(open_edges_warning(&FreeEdges { open_edges: 0, ..free }, &[]).is_none());
+        assert!(open_edges_warning(&FreeEdges { open_edges: 0, ..free }, &BTreeSet::new()).is_none());
     }
 }

@@ -1,7 +1,7 @@
 //! Extend and stitch (Sheen et al. 5.4): grow the open free edges of the trimmed patches up to their partners,
 //! fuse again so every joint becomes a shared edge, and trim the overshoot.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use serde::Serialize;
 
@@ -53,8 +53,8 @@ pub struct Stitched {
     pub branches: Vec<Branch>,
     pub joints: Vec<JointReport>,
     pub free: FreeEdges,
-    /// The patches (indices) with an open edge left, sorted.
-    pub open_patches: Vec<usize>,
+    /// The patches (indices) with an open edge left.
+    pub open_patches: BTreeSet<usize>,
 }
 
 /// Free edges of the kept faces: (edge, its one kept face), in edge order.
@@ -417,30 +417,28 @@ fn corners(planned: &[(usize, StripRequest, JointKey, &EdgeProbe)], fuzzy: f64) 
 }
 
 /// Sorts the free edges of the result into rim and open (the inside test of `decide`, or the edge stopping short
-/// of the boundary by more than the rim tolerance); also the patches with an open edge, sorted.
+/// of the boundary by more than the rim tolerance); also the patches with an open edge.
 fn classify_free(
     fused: &Fused,
     free: &[(usize, usize)],
     probes: &[EdgeProbe],
     patches: &[PatchInfo],
     solids: &[SolidMesh],
-) -> (FreeEdges, Vec<usize>) {
+) -> (FreeEdges, BTreeSet<usize>) {
     let mut out = FreeEdges::default();
-    let mut open_patches = Vec::new();
+    let mut open_patches = BTreeSet::new();
     for (&(edge, face), p) in free.iter().zip(probes) {
         let length = fused.edges[edge].length;
         // Short of the rim is open too: the material goes on past the edge, if only for a round's width.
         if open(fused, face, p, patches, solids) || shortfall(fused, face, p, patches, solids).is_some() {
             out.open_edges += 1;
             out.open_length += length;
-            open_patches.push(fused.faces[face].patch);
+            open_patches.insert(fused.faces[face].patch);
         } else {
             out.rim_edges += 1;
             out.rim_length += length;
         }
     }
-    open_patches.sort_unstable();
-    open_patches.dedup();
     (out, open_patches)
 }
 
