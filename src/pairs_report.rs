@@ -50,13 +50,49 @@ impl SolidPairing {
         self.tolerances.clip_narrow + 2.0 * fillet
     }
 
-    /// The edges whose loops the mid-patches fill (every suppressed hole's and boss's), sorted.
-    pub fn fill_edges(&self) -> Vec<EdgeId> {
+    /// The edges whose loops the mid-patches fill (every suppressed hole's and boss's, and every junction
+    /// loop's: see [`junction_loops`]), sorted.
+    pub fn fill_edges(&self, graph: &FaceGraph) -> Vec<EdgeId> {
         let mut fill: Vec<EdgeId> = self.features.iter().flat_map(|f| f.fill.iter().copied()).collect();
+        fill.extend(junction_loops(graph, &self.pairing.roles));
         fill.sort_unstable();
         fill.dedup();
         fill
     }
+}
+
+/// The edges of the inner loops of wall skins where another wall runs in: a branch pipe entering a main one
+/// leaves a hole in each skin of the main, bounded by the branch's skins. Offset, that hole is wider than
+/// the branch's mid-surface (the outer skin's hole by the branch's outer radius): no strip grown from its
+/// edge along a tangent follows the main's curved surface to the branch. Filled, the main's patch runs
+/// through and the branch meets it as a T; the piece across the branch's bore lies outside the material and
+/// is trimmed (`trim::outside_material`). A loop qualifies when every face across it is a skin of another
+/// wall or a suppressed blend at the junction, at least one the former; a hole's loop borders its bore. Only
+/// on curved skins: a strip grown along a plane stays on it.
+///
+/// Not yet: a hole across a tube's seam, which is no inner loop (the hole's edges join the outline between the
+/// two pieces of the seam); its edges are joined as before, by strips from both sides.
+pub fn junction_loops(graph: &FaceGraph, roles: &[FaceRole]) -> Vec<EdgeId> {
+    let mut out = Vec::new();
+    for face in &graph.faces {
+        let FaceRole::Pair { group, .. } = roles[face.id] else { continue };
+        if matches!(face.surface, Surface::Plane { .. }) {
+            continue; // a strip along a plane stays on it: the hole's edges are joined from both sides
+        }
+        let across = |e: &EdgeId| graph.edges[*e].faces.iter().copied().filter(move |&h| h != face.id);
+        let wall = |h: usize| matches!(roles[h], FaceRole::Pair { group: k, .. } if k != group);
+        let blend = |h: usize| matches!(roles[h], FaceRole::Suppressed);
+        let joins = |e: &EdgeId| {
+            let mut others = across(e).peekable();
+            others.peek().is_some() && others.all(|h| wall(h) || blend(h))
+        };
+        for lp in face.loops.iter().skip(1) {
+            if lp.iter().all(joins) && lp.iter().any(|e| across(e).any(wall)) {
+                out.extend(lp.iter().copied());
+            }
+        }
+    }
+    out
 }
 
 /// Pairs one solid: a first pairing with every face gives the roles the feature recognition needs (a fillet
@@ -195,4 +231,43 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
         sp.paired_skin_share * 100.0
     )
     .unwrap();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::face_graph::Convexity;
+    use crate::pairing::Side;
+    use crate::synthetic::{cylinder, graph, rect};
+    use glam::DVec3;
+
+    #[test]
+    fn a_loop_where_another_wall_runs_in_is_filled_a_hole_is_not() {
+        let square = || rect(DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z);
+        // Face 0: a main pipe's skin (group 0); 1: a branch's skin (group 1); 2: a hole's bore (thickness of
+        // group 0); 3: a suppressed blend.
+        let c = Convexity::Concave;
+        let pipe = cylinder(DVec3::ZERO, 20.0, (0.0, std::f64::consts::TAU), 100.0, true);
+        let adjacent = [(0, 1, c), (0, 1, c), (0, 2, c), (0, 3, c), (0, 1, c), (0, 3, c)];
+        let mut g = graph(vec![pipe, square(), square(), square()], &adjacent);
+        // Loops of face 0: its outline (no edges here), the branch's (0, 1), a hole's (2), a blend's alone (3),
+        // the branch's through a blend at the junction (4, 5).
+        g.faces[0].loops = vec![vec![], vec![0, 1], vec![2], vec![3], vec![4, 5]];
+        let roles = vec![
+            FaceRole::Pair { group: 0, side: Side::A },
+            FaceRole::Pair { group: 1, side: Side::A },
+            FaceRole::Thickness { group: 0 },
+            FaceRole::Suppressed,
+        ];
+        assert_eq!(junction_loops(&g, &roles), vec![0, 1, 4, 5]);
+        // The same loops on a face of the branch's own group: no other wall runs in.
+        let own =
+            vec![FaceRole::Pair { group: 1, side: Side::B }, roles[1].clone(), roles[2].clone(), roles[3].clone()];
+        assert_eq!(junction_loops(&g, &own), Vec::<EdgeId>::new());
+        // On a flat skin a strip grown from the loop stays on the plane: nothing to fill.
+        let loops = g.faces[0].loops.clone();
+        g.faces[0] = square();
+        g.faces[0].loops = loops;
+        assert_eq!(junction_loops(&g, &roles), Vec::<EdgeId>::new());
+    }
 }

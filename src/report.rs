@@ -5,7 +5,7 @@ use serde::Serialize;
 use crate::face_graph::FaceId;
 use crate::pairing::estimate::TMaxEstimate;
 use crate::pairing::{FaceRole, PairGroup, PairKind, Thickness};
-use crate::patch::trim::Branch;
+use crate::patch::trim::{Branch, TrimReason};
 use crate::stitch::{FreeEdges, JointReport};
 use crate::tolerance::Tolerances;
 use crate::topology::round;
@@ -121,6 +121,7 @@ pub struct TrimmedReport {
     pub area: f64,
     pub width: f64,
     pub crossing_patches: Vec<usize>,
+    pub reason: TrimReason,
 }
 
 impl TrimmedReport {
@@ -131,6 +132,7 @@ impl TrimmedReport {
             area: b.area,
             width: b.width,
             crossing_patches: b.crossing.iter().map(|p| p + 1).collect(),
+            reason: b.reason,
         }
     }
 }

@@ -9,7 +9,7 @@ use crate::exit::Exit;
 use crate::face_graph::FaceGraph;
 use crate::geom::inside::SolidMesh;
 use crate::output::Pending;
-use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
+use crate::pairs_report::{junction_loops, pair_part, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote, Position};
 use crate::patch::trim::{connected_sets, find_branches, keep_mask};
@@ -59,7 +59,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
         warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
-        let (fill, narrow) = (sp.fill_edges(), sp.clip_narrow());
+        let (fill, narrow) = (sp.fill_edges(&solid.graph), sp.clip_narrow());
         let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &fill);
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
@@ -106,6 +106,17 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy, split_internal: false })
         .map_err(kernel)?;
     let thickness: Vec<f64> = made.iter().map(|m| m.plan.thickness.mean).collect();
+    // Per solid: some patch of it was made with a junction loop filled.
+    let junctions: Vec<bool> = part
+        .solids
+        .iter()
+        .zip(&pairings)
+        .enumerate()
+        .map(|(i, (solid, sp))| {
+            let loops = junction_loops(&solid.graph, &sp.pairing.roles);
+            made.iter().any(|m| m.solid == i + 1 && m.plan.fill.iter().any(|e| loops.contains(e)))
+        })
+        .collect();
     let infos: Vec<PatchInfo> = made
         .iter()
         .map(|m| {
@@ -118,16 +129,17 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
                 solid: m.solid - 1,
                 reach: tolerances.joint_reach + skin,
                 on_rim: crate::tolerance::on_rim(m.plan.thickness.mean, part.solids[m.solid - 1].mesh_tolerance),
+                junction: junctions[m.solid - 1],
             }
         })
         .collect();
+    let meshes: Vec<SolidMesh> =
+        part.solids.iter().map(|s| SolidMesh::new(&s.graph).expect("run describes every solid with meshes")).collect();
     let mut branches = find_branches(&fused, &branch_limits(&infos));
     let keep = keep_mask(fused.faces.len(), &branches);
     timings.trim = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let meshes: Vec<SolidMesh> =
-        part.solids.iter().map(|s| SolidMesh::new(&s.graph).expect("run describes every solid with meshes")).collect();
     let (fused, keep, joints, free) = match stitch(&mut sidecar, &fused, &keep, &infos, &meshes, fuzzy) {
         Ok(s) => {
             branches.extend(s.branches);
@@ -441,6 +453,7 @@ mod tests {
             patch,
             area,
             centroid: DVec3::ZERO,
+            point: DVec3::ZERO,
             normal: DVec3::Z,
             edges: vec![],
         };

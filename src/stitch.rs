@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use crate::geom::inside::SolidMesh;
 use crate::joint::{self, Verdict};
-use crate::patch::trim::{branch_limit, find_branches, keep_mask, Branch};
+use crate::patch::trim::{branch_limit, find_branches, keep_mask, outside_material, Branch};
 use crate::sidecar::protocol::{
     CornerRequest, EdgeProbe, EdgeRef, Extended, Fused, GatherPart, Gathered, Probed, Request, StripRequest,
 };
@@ -24,6 +24,9 @@ pub struct PatchInfo {
     pub reach: f64,
     /// A free edge closer than this to the boundary is on the rim (`tolerance::on_rim`).
     pub on_rim: f64,
+    /// A patch of its solid was made with a junction loop filled (`pairs_report::junction_loops`): the pieces
+    /// outside the material (the filling across the branch's bore, the branch's strip past the main) are trimmed.
+    pub junction: bool,
 }
 
 /// The joints made between two patches (or tried from one), summed over their edges.
@@ -90,6 +93,20 @@ fn probe(
 /// How far a branch may hang past each patch.
 pub fn branch_limits(patches: &[PatchInfo]) -> Vec<f64> {
     patches.iter().map(|p| branch_limit(p.thickness, p.to_mid)).collect()
+}
+
+/// The pieces of `fused` to drop: the branches hanging past crossings, then of the rest those of patches with a
+/// filled junction that lie outside the material; with the mask of the pieces kept.
+fn trim(fused: &Fused, patches: &[PatchInfo], solids: &[SolidMesh]) -> (Vec<bool>, Vec<Branch>) {
+    let mut branches = find_branches(fused, &branch_limits(patches));
+    let keep = keep_mask(fused.faces.len(), &branches);
+    // Only where a junction was filled: elsewhere a piece of a patch out of the material is an overshoot the
+    // joints still use (dropping them all made ender3_x_limit's and fw13_top_cover's stitching worse).
+    branches.extend(outside_material(fused, &keep, |face| {
+        let patch = &patches[face.patch];
+        !patch.junction || solids[patch.solid].contains(face.point + face.normal * patch.to_mid)
+    }));
+    (keep_mask(fused.faces.len(), &branches), branches)
 }
 
 /// Whether the free edge of `face` lies in the material of its patch's solid.
@@ -241,7 +258,7 @@ fn grow(
             verdict @ (Verdict::Rim | Verdict::Unresolved) => match to_rim(fused, edge, face, p, patches, solids) {
                 Some(lengths) => planned.push((
                     patch,
-                    StripRequest { edge, face, lengths },
+                    StripRequest { edge, face, lengths, onto_face: false },
                     (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
                     p,
                 )),
@@ -253,7 +270,7 @@ fn grow(
                 ids.sort_unstable();
                 planned.push((
                     patch,
-                    StripRequest { edge, face, lengths: x.lengths },
+                    StripRequest { edge, face, lengths: x.lengths, onto_face: x.kind == joint::JointKind::T },
                     (ids, x.kind.name(), "extended"),
                     p,
                 ));
@@ -334,8 +351,7 @@ fn grow(
     for face in &mut again.faces {
         face.patch = order[face.patch];
     }
-    let branches = find_branches(&again, &branch_limits(patches));
-    let keep = keep_mask(again.faces.len(), &branches);
+    let (keep, branches) = trim(&again, patches, solids);
     Ok(Some((again, keep, branches)))
 }
 

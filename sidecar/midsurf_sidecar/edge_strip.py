@@ -6,8 +6,11 @@ for a straight edge reaching a plane, twisted where the lengths vary along a cur
 coincides with the patch's edge, so the next `fuse` shares it.
 """
 
+import math
+
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepFill import BRepFill
@@ -32,11 +35,12 @@ from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 PARALLEL = 1e-6
 
 
-def strip(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float]) -> TopoDS_Face:
+def strip(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float], onto_face: bool = False) -> TopoDS_Face:
     """Oriented like the patch face (normals agree at the middle of the edge), so the faces of one patch can
-    be merged and shells stay consistently oriented."""
+    be merged and shells stay consistently oriented. `onto_face`: the edge grows onto the partner patch's own
+    face (a T-joint), which a strip on a cylinder may then keep to (`_axial_sweep`)."""
     samples = sample_edge(face, edge, len(lengths))
-    made = _strip(face, edge, samples, lengths)
+    made = _strip(face, edge, samples, lengths, onto_face)
     return _oriented_like(made, samples[len(samples) // 2].normal)
 
 
@@ -45,7 +49,7 @@ def _oriented_like(made: TopoDS_Face, normal: Vec) -> TopoDS_Face:
     return made if dot(own, normal) >= 0.0 else TopoDS.Face(made.Reversed())
 
 
-def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[float]) -> TopoDS_Face:
+def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[float], onto_face: bool) -> TopoDS_Face:
     far = [add_scaled(s.point, s.outward, length) for s, length in zip(samples, lengths)]
     first = samples[0].outward
     if all(norm(sub(s.outward, first)) <= PARALLEL for s in samples) and max(lengths) - min(lengths) <= PARALLEL * max(lengths):
@@ -56,6 +60,18 @@ def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[f
         if along_axis is not None:
             return along_axis
         prism = BRepPrimAPI_MakePrism(TopoDS.Edge(edge.Oriented(TopAbs_FORWARD)), gp_Vec(*sweep))
+        if prism.IsDone():
+            swept = TopExp_Explorer(prism.Shape(), TopAbs_FACE)
+            if swept.More():
+                return TopoDS.Face(swept.Current())
+    # Only onto a face: the partner of an L-joint grows a ruled strip too, and the kernel could not cut the
+    # cylinder band with it where the two run side by side (a branch across its main's seam).
+    axial = _axial_sweep(face, samples, lengths) if onto_face else None
+    if axial is not None:
+        band = _cylinder_band(face, edge, axial)
+        if band is not None:
+            return band
+        prism = BRepPrimAPI_MakePrism(TopoDS.Edge(edge.Oriented(TopAbs_FORWARD)), gp_Vec(*axial))
         if prism.IsDone():
             swept = TopExp_Explorer(prism.Shape(), TopAbs_FACE)
             if swept.More():
@@ -110,6 +126,70 @@ def _along_cylinder(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS
     v1 = v0 + along
     maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v0, v1), max(v0, v1), 1e-7)
     return maker.Face() if maker.IsDone() else None
+
+
+# A curved edge of a cylindrical patch whose outward directions all lie within this angle of the axis
+# (degrees) is swept along the axis: the saddle where a branch pipe meets its main.
+AXIAL_DEG = 45.0
+
+
+def _axial_sweep(face: TopoDS_Face, samples: list, lengths: list[float]) -> Vec | None:
+    """The sweep along a cylindrical patch's axis by the longest length, when the samples grow along the axis
+    (one way; most within AXIAL_DEG, none against it). A ruled strip through a few samples of a closed saddle edge leaves the
+    cylinder between them, and its crossing with the main pipe then misses the branch's own surface; the
+    edge swept along the axis stays on the cylinder. The longer sweep at samples nearer their partner is an
+    overshoot the trimming drops."""
+    adaptor = BRepAdaptor_Surface(face, False)
+    if adaptor.GetType() != GeomAbs_Cylinder:
+        return None
+    axis = xyz(adaptor.Cylinder().Axis().Direction())
+    along = sorted(dot(s.outward, axis) for s in samples)
+    median, limit = along[len(along) // 2], math.cos(math.radians(AXIAL_DEG))
+    # The ends may turn across the axis: where an equal-radius branch touches its main, the saddle's
+    # halves end upright.
+    if median >= limit and along[0] >= -PARALLEL:
+        return scale(axis, max(lengths))
+    if median <= -limit and along[-1] <= PARALLEL:
+        return scale(axis, -max(lengths))
+    return None
+
+
+# Points along an edge's pcurve to find its extent in the cylinder's parameters.
+PCURVE_SAMPLES = 64
+
+
+def _cylinder_band(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
+    """The edge swept along the axis as a face of the patch's own cylinder: the band of the cylinder from the
+    edge's lowest to its highest point (in the sweep's direction) and on by the sweep, less the patch face.
+    A prism of a saddle edge is a surface of extrusion, which the kernel intersects with another pipe's
+    cylinder numerically: at an equal-radius tee, where the two touch at the saddle's ends, it broke the faces
+    it cut (salome_pipe). Two true cylinders meet in its analytic case. None when the cut leaves other than
+    one face (a patch piece not covering the band above the edge)."""
+    surface = BRep_Tool.Surface_s(face)
+    axis = xyz(BRepAdaptor_Surface(face, False).Cylinder().Axis().Direction())
+    curve = BRepAdaptor_Curve2d(TopoDS.Edge(edge), face)
+    first, last = curve.FirstParameter(), curve.LastParameter()
+    uv = [curve.Value(first + (last - first) * k / PCURVE_SAMPLES) for k in range(PCURVE_SAMPLES + 1)]
+    us, vs = [p.X() for p in uv], [p.Y() for p in uv]
+    u0, u1 = min(us), max(us)
+    if u1 - u0 <= 0.0:
+        return None
+    along = dot(sweep, axis)  # v runs along the axis of the cylinder's frame, in length units
+    v0, v1 = (min(vs) + min(along, 0.0), max(vs) + max(along, 0.0))
+    band = BRepBuilderAPI_MakeFace(surface, u0, u1, v0, v1, 1e-7)
+    if not band.IsDone():
+        return None
+    cut = BRepAlgoAPI_Cut(band.Face(), face)
+    if not cut.IsDone():
+        return None
+    pieces = TopExp_Explorer(cut.Shape(), TopAbs_FACE)
+    found = []
+    while pieces.More():
+        found.append(TopoDS.Face(pieces.Current()))
+        pieces.Next()
+    if len(found) != 1 or not BRepCheck_Analyzer(found[0]).IsValid():
+        return None
+    return found[0]
 
 
 def _plane_of(face: TopoDS_Face) -> gp_Pln | None:

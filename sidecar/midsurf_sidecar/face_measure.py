@@ -11,7 +11,8 @@ from .vectors import xyz
 
 
 def measure(face: TopoDS_Face) -> dict[str, Any]:
-    """`{"area", "centroid", "normal"}`; the normal is the oriented face's normal at an interior point."""
+    """`{"area", "centroid", "point", "normal"}`: `point` lies on the face (the centroid of a curved or holed
+    face need not), `normal` is the oriented face's normal there."""
     props = surface_props(face)
-    _, normal = interior_point(OutwardNormals(face), diagonal(face))
-    return {"area": props.Mass(), "centroid": list(xyz(props.CentreOfMass())), "normal": list(normal)}
+    point, normal = interior_point(OutwardNormals(face), diagonal(face))
+    return {"area": props.Mass(), "centroid": list(xyz(props.CentreOfMass())), "point": list(point), "normal": list(normal)}

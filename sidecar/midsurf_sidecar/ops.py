@@ -189,10 +189,13 @@ def extend_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         lengths = [as_number(v, "a strip length") for v in require_list(entry, "lengths")]
         if len(lengths) < 2 or min(lengths) <= 0.0:
             raise BadArgs(f"strip {j}: at least 2 lengths, all positive, got {lengths}")
+        onto_face = entry.get("onto_face", False)
+        if not isinstance(onto_face, bool):
+            raise BadArgs(f"strip {j}: `onto_face` must be true or false, got {onto_face!r}")
         face = TopoDS.Face(face_map.FindKey(face_id + 1))
         # One strip the kernel cannot make is that joint's failure, not the whole request's.
         try:
-            made = edge_strip.strip(face, edge_map.FindKey(edge_id + 1), lengths)
+            made = edge_strip.strip(face, edge_map.FindKey(edge_id + 1), lengths, onto_face)
         except Exception as exc:  # OCCT raises its own Standard_Failure types
             made_json.append({"area": None, "error": one_line(exc)})
             continue

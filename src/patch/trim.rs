@@ -12,7 +12,7 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::sidecar::protocol::Fused;
+use crate::sidecar::protocol::{Fused, FusedFace};
 use crate::union_find::find;
 
 /// Overshoot allowance over the crossing patch's thickness (nominal overshoot 0.5).
@@ -24,16 +24,27 @@ pub fn branch_limit(thickness: f64, to_mid: f64) -> f64 {
     BRANCH_WIDTH * thickness + to_mid.abs()
 }
 
+/// Why a piece is trimmed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TrimReason {
+    /// It hangs past a crossing by an overshoot.
+    Overshoot,
+    /// It lies outside the material (see [`outside_material`]).
+    Outside,
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Branch {
     /// Index of the piece in the fused shape.
     pub piece: usize,
     pub patch: usize,
     pub area: f64,
-    /// Farthest distance of the piece's boundary from the crossing lines.
+    /// Farthest distance of the piece's boundary from the crossing lines (0 for a piece outside the material).
     pub width: f64,
     /// Patches it crosses, sorted.
     pub crossing: Vec<usize>,
+    pub reason: TrimReason,
 }
 
 fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
@@ -112,7 +123,14 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             .map(|&p| lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min))
             .fold(0.0, f64::max);
         if width <= across {
-            candidates[i] = Some(Branch { piece: i, patch: face.patch, area: face.area, width, crossing });
+            candidates[i] = Some(Branch {
+                piece: i,
+                patch: face.patch,
+                area: face.area,
+                width,
+                crossing,
+                reason: TrimReason::Overshoot,
+            });
         }
     }
     // A narrow piece joined (through other narrow pieces) to a piece of its patch that is not narrow continues
@@ -129,11 +147,62 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
     }
     for (i, face) in fused.faces.iter().enumerate() {
         if loose[i] && !anchored[i] {
-            candidates[i] =
-                Some(Branch { piece: i, patch: face.patch, area: face.area, width: 0.0, crossing: Vec::new() });
+            candidates[i] = Some(Branch {
+                piece: i,
+                patch: face.patch,
+                area: face.area,
+                width: 0.0,
+                crossing: Vec::new(),
+                reason: TrimReason::Overshoot,
+            });
         }
     }
     candidates.into_iter().zip(anchored).filter_map(|(c, a)| if a { None } else { c }).collect()
+}
+
+/// The kept pieces (`keep`) that lie outside the material: `inside(face)` says whether a point of the face (moved
+/// to the middle of its wall) lies in its solid. A patch whose skin had a hole where another wall runs in (a
+/// branch pipe) is made with the hole filled (`pairs_report::junction_loops`), and the crossing wall cuts the
+/// filling out as a piece of its own: across the branch's bore, where there is no material to be the middle of.
+/// Only pieces that touch another patch and are not their patch's largest: the body of a patch is never
+/// dropped, whatever a point of it says.
+pub fn outside_material(fused: &Fused, keep: &[bool], inside: impl Fn(&FusedFace) -> bool) -> Vec<Branch> {
+    let mut largest: Vec<Option<(f64, usize)>> = Vec::new();
+    for (i, f) in fused.faces.iter().enumerate().filter(|&(i, _)| keep[i]) {
+        if largest.len() <= f.patch {
+            largest.resize(f.patch + 1, None);
+        }
+        if largest[f.patch].is_none_or(|(a, _)| f.area > a) {
+            largest[f.patch] = Some((f.area, i));
+        }
+    }
+    let mut out = Vec::new();
+    for (i, face) in fused.faces.iter().enumerate() {
+        if !keep[i] || largest[face.patch].map(|(_, j)| j) == Some(i) {
+            continue;
+        }
+        let mut crossing: Vec<usize> = face
+            .edges
+            .iter()
+            .flat_map(|&e| fused.edges[e].faces.iter())
+            .filter(|&&g| keep[g])
+            .map(|&g| fused.faces[g].patch)
+            .filter(|&p| p != face.patch)
+            .collect();
+        crossing.sort_unstable();
+        crossing.dedup();
+        if !crossing.is_empty() && !inside(face) {
+            out.push(Branch {
+                piece: i,
+                patch: face.patch,
+                area: face.area,
+                width: 0.0,
+                crossing,
+                reason: TrimReason::Outside,
+            });
+        }
+    }
+    out
 }
 
 /// Which pieces stay once `branches` are dropped.
@@ -187,7 +256,7 @@ mod tests {
     }
 
     fn face(patch: usize, area: f64, edges: Vec<usize>) -> FusedFace {
-        FusedFace { patch, area, centroid: DVec3::ZERO, normal: DVec3::Z, edges }
+        FusedFace { patch, area, centroid: DVec3::ZERO, point: DVec3::ZERO, normal: DVec3::Z, edges }
     }
 
     fn edge(faces: Vec<usize>, a: DVec3, b: DVec3) -> FusedEdge {
@@ -221,6 +290,50 @@ mod tests {
             ],
             edges,
         }
+    }
+
+    /// A main pipe's patch (0) split by a branch's patch (1) into its body (piece 0) and the cap across the
+    /// branch's bore (piece 1, point at x = 100); the branch (piece 2) and a loose piece of the main touching
+    /// no other patch (piece 3, point at x = 200).
+    fn tee() -> Fused {
+        let v = |x: f64| DVec3::new(x, 0.0, 0.0);
+        let at = |mut f: FusedFace, x: f64| {
+            f.point = v(x);
+            f
+        };
+        Fused {
+            handle: 1,
+            faces: vec![
+                at(face(0, 5000.0, vec![0, 2]), 0.0),
+                at(face(0, 600.0, vec![0]), 100.0),
+                at(face(1, 3000.0, vec![0]), 50.0),
+                at(face(0, 300.0, vec![2]), 200.0),
+            ],
+            edges: vec![
+                edge(vec![0, 1, 2], v(0.0), v(1.0)),
+                edge(vec![3], v(0.0), v(1.0)),
+                edge(vec![0, 3], v(0.0), v(1.0)),
+            ],
+        }
+    }
+
+    #[test]
+    fn the_cap_across_a_bore_is_outside_the_material() {
+        // Material everywhere but beyond x = 90: the cap and the loose piece are out, only the cap touches
+        // another patch.
+        let fused = tee();
+        let out = outside_material(&fused, &[true; 4], |f| f.point.x < 90.0);
+        assert_eq!(out.iter().map(|b| (b.piece, b.reason)).collect::<Vec<_>>(), vec![(1, TrimReason::Outside)]);
+        assert_eq!(out[0].crossing, vec![1]);
+        // A piece already dropped neither counts as the patch's largest nor as a neighbour.
+        let keep = [false, true, true, true];
+        let out = outside_material(&fused, &keep, |_| false);
+        assert_eq!(out.iter().map(|b| b.piece).collect::<Vec<_>>(), Vec::<usize>::new(), "piece 1 is now the largest");
+    }
+
+    #[test]
+    fn the_body_of_a_patch_is_never_outside() {
+        assert!(outside_material(&tee(), &[true; 4], |_| false).iter().all(|b| b.piece != 0 && b.piece != 2));
     }
 
     #[test]

@@ -47,6 +47,8 @@ pub struct StripRequest {
     pub edge: usize,
     pub face: usize,
     pub lengths: Vec<f64>,
+    /// The edge grows onto the partner's face (a T-joint), not toward a strip grown from the partner.
+    pub onto_face: bool,
 }
 
 /// A quad closing the notch between two strips at a corner of a patch, oriented along the patch's normal.
@@ -246,6 +248,8 @@ pub struct FusedFace {
     pub patch: usize,
     pub area: f64,
     pub centroid: glam::DVec3,
+    /// A point on the face (its UV centre when that lies inside); `normal` is the face's normal there.
+    pub point: glam::DVec3,
     pub normal: glam::DVec3,
     pub edges: Vec<usize>,
 }
@@ -399,13 +403,13 @@ mod tests {
             (
                 Request::ExtendEdges {
                     handle: 9,
-                    strips: vec![StripRequest { edge: 4, face: 1, lengths: vec![1.0, 1.5] }],
+                    strips: vec![StripRequest { edge: 4, face: 1, lengths: vec![1.0, 1.5], onto_face: true }],
                     corners: vec![CornerRequest {
                         points: [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::ONE, glam::DVec3::Y],
                         normal: glam::DVec3::Z,
                     }],
                 },
-                r#"{"id":0,"op":"extend_edges","args":{"handle":9,"strips":[{"edge":4,"face":1,"lengths":[1.0,1.5]}],"corners":[{"points":[[0.0,0.0,0.0],[1.0,0.0,0.0],[1.0,1.0,1.0],[0.0,1.0,0.0]],"normal":[0.0,0.0,1.0]}]}}"#,
+                r#"{"id":0,"op":"extend_edges","args":{"handle":9,"strips":[{"edge":4,"face":1,"lengths":[1.0,1.5],"onto_face":true}],"corners":[{"points":[[0.0,0.0,0.0],[1.0,0.0,0.0],[1.0,1.0,1.0],[0.0,1.0,0.0]],"normal":[0.0,0.0,1.0]}]}}"#,
             ),
             (
                 Request::Gather { parts: vec![GatherPart { handle: 9, faces: vec![0, 2] }], unify: Some(0.001) },
