@@ -28,6 +28,9 @@ pub struct SolidPairing {
     pub limits: Limits,
     /// The small features suppressed: their faces did not pair.
     pub features: Vec<Feature>,
+    /// The edges of the junction loops (`junction_loops`), sorted.
+    #[serde(skip)]
+    pub junction: Vec<EdgeId>,
     pub pairing: Pairing,
     /// Share of the solid's area on paired faces.
     pub paired_share: f64,
@@ -52,9 +55,9 @@ impl SolidPairing {
 
     /// The edges whose loops the mid-patches fill (every suppressed hole's and boss's, and every junction
     /// loop's: see [`junction_loops`]), sorted.
-    pub fn fill_edges(&self, graph: &FaceGraph) -> Vec<EdgeId> {
+    pub fn fill_edges(&self) -> Vec<EdgeId> {
         let mut fill: Vec<EdgeId> = self.features.iter().flat_map(|f| f.fill.iter().copied()).collect();
-        fill.extend(junction_loops(graph, &self.pairing.roles));
+        fill.extend(&self.junction);
         fill.sort_unstable();
         fill.dedup();
         fill
@@ -129,12 +132,16 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
         })
         .map(|f| f.area)
         .sum();
+    let mut junction = junction_loops(graph, &pairing.roles);
+    junction.sort_unstable();
+    junction.dedup();
     SolidPairing {
         t_max_source,
         estimate,
         tolerances,
         limits,
         features,
+        junction,
         paired_share: if graph.area > 0.0 { paired / graph.area } else { 0.0 },
         paired_skin_share: if skins > 0.0 { paired / skins } else { 0.0 },
         pairing,

@@ -9,7 +9,7 @@ use crate::exit::Exit;
 use crate::face_graph::FaceGraph;
 use crate::geom::inside::SolidMesh;
 use crate::output::Pending;
-use crate::pairs_report::{junction_loops, pair_part, PairingParams, SolidPairing};
+use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote, Position};
 use crate::patch::trim::{connected_sets, find_branches, keep_mask};
@@ -59,7 +59,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
         warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
-        let (fill, narrow) = (sp.fill_edges(&solid.graph), sp.clip_narrow());
+        let (fill, narrow) = (sp.fill_edges(), sp.clip_narrow());
         let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &fill);
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
@@ -107,16 +107,11 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         .map_err(kernel)?;
     let thickness: Vec<f64> = made.iter().map(|m| m.plan.thickness.mean).collect();
     // Per solid: some patch of it was made with a junction loop filled.
-    let junctions: Vec<bool> = part
-        .solids
-        .iter()
-        .zip(&pairings)
-        .enumerate()
-        .map(|(i, (solid, sp))| {
-            let loops = junction_loops(&solid.graph, &sp.pairing.roles);
-            made.iter().any(|m| m.solid == i + 1 && m.plan.fill.iter().any(|e| loops.contains(e)))
-        })
-        .collect();
+    let mut junctions = vec![false; part.solids.len()];
+    for m in &made {
+        let junction = &pairings[m.solid - 1].junction;
+        junctions[m.solid - 1] |= m.plan.fill.iter().any(|e| junction.binary_search(e).is_ok());
+    }
     let infos: Vec<PatchInfo> = made
         .iter()
         .map(|m| {

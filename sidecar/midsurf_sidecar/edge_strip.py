@@ -28,7 +28,7 @@ from .edge_probe import sample_edge
 from .errors import KernelError
 from .face_normals import OutwardNormals
 from .face_point import interior_point
-from .topology import diagonal
+from .topology import diagonal, indexed_map
 from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 
 # Outward directions (unit vectors) and lengths equal to this (relative) share are one sweep.
@@ -56,26 +56,18 @@ def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[f
         # One direction, one length: the edge swept straight, which keeps the patch's own surface where it
         # can (a circle along its cylinder's axis stays that cylinder), so the strip merges into the patch.
         sweep = scale(first, sum(lengths) / len(lengths))
-        along_axis = _along_cylinder(face, edge, sweep)
-        if along_axis is not None:
-            return along_axis
-        prism = BRepPrimAPI_MakePrism(TopoDS.Edge(edge.Oriented(TopAbs_FORWARD)), gp_Vec(*sweep))
-        if prism.IsDone():
-            swept = TopExp_Explorer(prism.Shape(), TopAbs_FACE)
-            if swept.More():
-                return TopoDS.Face(swept.Current())
+        made = _along_cylinder(face, edge, sweep)
+        made = made if made is not None else _prism(edge, sweep)
+        if made is not None:
+            return made
     # Only onto a face: the partner of an L-joint grows a ruled strip too, and the kernel could not cut the
     # cylinder band with it where the two run side by side (a branch across its main's seam).
     axial = _axial_sweep(face, samples, lengths) if onto_face else None
     if axial is not None:
-        band = _cylinder_band(face, edge, axial)
-        if band is not None:
-            return band
-        prism = BRepPrimAPI_MakePrism(TopoDS.Edge(edge.Oriented(TopAbs_FORWARD)), gp_Vec(*axial))
-        if prism.IsDone():
-            swept = TopExp_Explorer(prism.Shape(), TopAbs_FACE)
-            if swept.More():
-                return TopoDS.Face(swept.Current())
+        made = _cylinder_band(face, edge, axial)
+        made = made if made is not None else _prism(edge, axial)
+        if made is not None:
+            return made
     # Forward, so the ruled surface joins the near edge's first vertex to the far curve's first point.
     near = TopoDS.Edge(edge.Oriented(TopAbs_FORWARD))
     near_curve = BRepAdaptor_Curve(near)
@@ -101,6 +93,15 @@ def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[f
     if result.IsNull() or not BRepCheck_Analyzer(result).IsValid():
         raise KernelError("the strip face is not valid")
     return result
+
+
+def _prism(edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
+    """The edge swept straight by `sweep` (a surface of extrusion), or None when the kernel gives up."""
+    prism = BRepPrimAPI_MakePrism(TopoDS.Edge(edge.Oriented(TopAbs_FORWARD)), gp_Vec(*sweep))
+    if not prism.IsDone():
+        return None
+    swept = TopExp_Explorer(prism.Shape(), TopAbs_FACE)
+    return TopoDS.Face(swept.Current()) if swept.More() else None
 
 
 def _along_cylinder(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
@@ -182,14 +183,11 @@ def _cylinder_band(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_
     cut = BRepAlgoAPI_Cut(band.Face(), face)
     if not cut.IsDone():
         return None
-    pieces = TopExp_Explorer(cut.Shape(), TopAbs_FACE)
-    found = []
-    while pieces.More():
-        found.append(TopoDS.Face(pieces.Current()))
-        pieces.Next()
-    if len(found) != 1 or not BRepCheck_Analyzer(found[0]).IsValid():
+    pieces = indexed_map(cut.Shape(), TopAbs_FACE)
+    if pieces.Size() != 1:
         return None
-    return found[0]
+    made = TopoDS.Face(pieces.FindKey(1))
+    return made if BRepCheck_Analyzer(made).IsValid() else None
 
 
 def _plane_of(face: TopoDS_Face) -> gp_Pln | None:

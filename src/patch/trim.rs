@@ -60,12 +60,7 @@ fn distance_to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
 
 /// The branches to drop; `limit[k]` is how far a branch may hang past patch k (see [`branch_limit`]).
 pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
-    let mut largest: Vec<Option<(f64, usize)>> = vec![None; limit.len()];
-    for (i, f) in fused.faces.iter().enumerate() {
-        if largest[f.patch].is_none_or(|(a, _)| f.area > a) {
-            largest[f.patch] = Some((f.area, i));
-        }
-    }
+    let largest = largest_pieces(fused, &vec![true; fused.faces.len()]);
     let mut candidates: Vec<Option<Branch>> = vec![None; fused.faces.len()];
     // Pieces of the same patch sharing an edge no other patch crosses.
     let mut own_links: Vec<Vec<usize>> = vec![Vec::new(); fused.faces.len()];
@@ -104,7 +99,7 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
                 own_links[i].extend(edge.faces.iter().copied().filter(|&g| g != i));
             }
         }
-        if largest[face.patch].map(|(_, j)| j) == Some(i) || (!hanging && own_links[i].is_empty()) {
+        if largest[face.patch] == Some(i) || (!hanging && own_links[i].is_empty()) {
             // The main piece, or one closed in by crossing lines all round (a floor between walls): however
             // narrow, a branch hangs past the crossing, by a free edge or with other overshoot pieces.
             continue;
@@ -167,18 +162,10 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
 /// Only pieces that touch another patch and are not their patch's largest: the body of a patch is never
 /// dropped, whatever a point of it says.
 pub fn outside_material(fused: &Fused, keep: &[bool], inside: impl Fn(&FusedFace) -> bool) -> Vec<Branch> {
-    let mut largest: Vec<Option<(f64, usize)>> = Vec::new();
-    for (i, f) in fused.faces.iter().enumerate().filter(|&(i, _)| keep[i]) {
-        if largest.len() <= f.patch {
-            largest.resize(f.patch + 1, None);
-        }
-        if largest[f.patch].is_none_or(|(a, _)| f.area > a) {
-            largest[f.patch] = Some((f.area, i));
-        }
-    }
+    let largest = largest_pieces(fused, keep);
     let mut out = Vec::new();
     for (i, face) in fused.faces.iter().enumerate() {
-        if !keep[i] || largest[face.patch].map(|(_, j)| j) == Some(i) {
+        if !keep[i] || largest[face.patch] == Some(i) {
             continue;
         }
         let mut crossing: Vec<usize> = face
@@ -203,6 +190,18 @@ pub fn outside_material(fused: &Fused, keep: &[bool], inside: impl Fn(&FusedFace
         }
     }
     out
+}
+
+/// Per patch (indexed by patch), its largest piece among those kept (`keep`), the first on a tie.
+fn largest_pieces(fused: &Fused, keep: &[bool]) -> Vec<Option<usize>> {
+    let patches = fused.faces.iter().map(|f| f.patch + 1).max().unwrap_or(0);
+    let mut largest: Vec<Option<(f64, usize)>> = vec![None; patches];
+    for (i, f) in fused.faces.iter().enumerate().filter(|&(i, _)| keep[i]) {
+        if largest[f.patch].is_none_or(|(a, _)| f.area > a) {
+            largest[f.patch] = Some((f.area, i));
+        }
+    }
+    largest.into_iter().map(|l| l.map(|(_, i)| i)).collect()
 }
 
 /// Which pieces stay once `branches` are dropped.
