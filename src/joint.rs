@@ -64,6 +64,8 @@ pub struct Extension {
     pub partner: usize,
     /// Per sample of the edge: distance to the partner plus the overshoot.
     pub lengths: Vec<f64>,
+    /// Median distance to the partner over the samples that met it (no overshoot).
+    pub distance: f64,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -112,6 +114,7 @@ pub fn decide(
     let overshoot = OVERSHOOT * thickness[partner];
     let mut on_face = 0;
     let mut met = 0;
+    let mut distances = Vec::new();
     let reached: Vec<Option<f64>> = probe
         .hits
         .iter()
@@ -125,11 +128,14 @@ pub fn decide(
             if best.gap <= overshoot {
                 on_face += 1;
             }
+            distances.push(best.distance);
             Some(best.distance + overshoot)
         })
         .collect();
     let kind = if 2 * on_face > met { JointKind::T } else { JointKind::L };
-    Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached) })
+    distances.sort_by(f64::total_cmp);
+    let distance = distances[distances.len() / 2];
+    Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached), distance })
 }
 
 /// How far past its samples a free edge with no partner must grow to reach the part's boundary, or None when
@@ -160,11 +166,17 @@ pub fn rim_shortfall(
     (known[known.len() / 2] > on_rim).then(|| fill_gaps(&shortfall).into_iter().map(|d| d.max(0.5 * on_rim)).collect())
 }
 
-/// A free edge that found no partner, as the step search sees it.
+/// A free edge, as the step search sees it.
 #[derive(Debug, Clone)]
 pub struct LooseEdge {
     pub patch: usize,
+    /// The wall the patch was made from (solid, pair group).
+    pub wall: (usize, usize),
     pub thickness: f64,
+    /// How far away the partner its rays found is (infinite when it found none).
+    pub nearest: f64,
+    /// Its outside lies in the material (else it is on the rim).
+    pub open: bool,
     /// Samples along the edge, ends included.
     pub points: Vec<DVec3>,
     /// The patch normal and the outward direction (in the patch, away from it) at the edge.
@@ -202,8 +214,8 @@ pub struct StepBridge {
     pub normal: DVec3,
 }
 
-/// Bridges across thickness steps and in-plane gaps (the in-plane joint): two straight loose edges of
-/// different, parallel patches, running side by side and facing each other (outward directions opposite),
+/// Bridges across thickness steps and in-plane gaps (the in-plane joint): two straight free edges of
+/// different, parallel patches that may bridge (`bridgeable`), running side by side and facing each other (outward directions opposite),
 /// whose levels differ by at most the larger thickness and whose in-plane gap is no wider than it. The quad
 /// between the edges over the stretch they share fills an in-plane gap. A step steeper than 45 degrees and
 /// higher than `STEP_LEVEL_SHARE` of the thinner wall is laid down into a ramp from the thinner patch's edge
@@ -269,6 +281,9 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
                 // A flat or upright bridge joins the first edge's patch: the same quad seen from the other side.
                 StepBridge { owner: thick, other: thin, quad: [quad[1], quad[0], quad[3], quad[2]], normal: ek.outward }
             };
+            if !bridgeable(et, ek, offset.length()) {
+                continue;
+            }
             candidates.push((offset.length(), bridge));
         }
     }
@@ -285,6 +300,18 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     }
     out.sort_by_key(|b| (b.owner, b.other));
     out
+}
+
+/// Two loose edges (open, no partner) bridge anything within reach. Otherwise the bridge is a thickness step:
+/// two levels of one wall, at least one open, each nearer to the other than to the partner its rays found. The
+/// other level of a step is invisible to rays along a patch, which find a farther wall past it; and the thicker
+/// level's edge may read as rim, the thinner level's skin running on past it.
+fn bridgeable(a: &LooseEdge, b: &LooseEdge, distance: f64) -> bool {
+    let loose = |e: &LooseEdge| e.open && e.nearest.is_infinite();
+    if loose(a) && loose(b) {
+        return true;
+    }
+    a.wall == b.wall && (a.open || b.open) && distance < a.nearest.min(b.nearest)
 }
 
 /// Missing values linearly interpolated between their known neighbours, held constant past the ends.
@@ -407,7 +434,16 @@ mod tests {
 
     fn loose(patch: usize, thickness: f64, x: f64, z: f64, y: (f64, f64), outward: DVec3) -> LooseEdge {
         let points = (0..5).map(|k| DVec3::new(x, y.0 + (y.1 - y.0) * k as f64 / 4.0, z)).collect();
-        LooseEdge { patch, thickness, points, normal: DVec3::Z, outward }
+        LooseEdge {
+            patch,
+            wall: (1, patch),
+            thickness,
+            nearest: f64::INFINITY,
+            open: true,
+            points,
+            normal: DVec3::Z,
+            outward,
+        }
     }
 
     #[test]
@@ -424,6 +460,22 @@ mod tests {
         for (q, (x, y, z)) in quad.iter().zip(expected) {
             assert!(q.distance(DVec3::new(x, y, z)) < 1e-9, "{quad:?}");
         }
+    }
+
+    #[test]
+    fn a_step_edge_that_saw_a_farther_wall_still_bridges_to_the_other_level_of_its_wall() {
+        // The thin level's edge found an L partner 4 away (a wall past the step, seen along the patch); the
+        // thick level's edge reads as rim. Levels of one wall 0.5 apart: the step wins.
+        let thin = LooseEdge { nearest: 4.0, wall: (1, 7), ..loose(1, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X) };
+        let thick = LooseEdge { open: false, wall: (1, 7), ..loose(0, 3.0, 50.0, 1.5, (60.0, 10.0), -DVec3::X) };
+        assert_eq!(step_bridges(&[thick.clone(), thin.clone()]).len(), 1);
+        // Not across two walls, not past a nearer partner, and not between two rim edges.
+        let other_wall = LooseEdge { wall: (1, 8), ..thick.clone() };
+        assert!(step_bridges(&[other_wall, thin.clone()]).is_empty());
+        let near = LooseEdge { nearest: 0.4, ..thin.clone() };
+        assert!(step_bridges(&[thick.clone(), near]).is_empty());
+        let rim = LooseEdge { open: false, ..thin };
+        assert!(step_bridges(&[thick, rim]).is_empty());
     }
 
     #[test]

@@ -111,12 +111,12 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
     let tolerances = Tolerances::new(graph.bbox.diagonal(), t_max, draft_max);
     let limits = params.limits.resolve(t_max);
     let tested = pairing::test_candidates(graph, &tolerances);
-    let first = pairing::assemble(graph, &tested, &vec![true; graph.faces.len()]);
+    let first = pairing::assemble(graph, &tested, &vec![true; graph.faces.len()], &tolerances);
     let features = features::recognise(graph, &first.roles, &limits, tolerances.coaxial);
     let pairing = if features.is_empty() {
         first
     } else {
-        pairing::assemble(graph, &tested, &features::pairable(graph.faces.len(), &features))
+        pairing::assemble(graph, &tested, &features::pairable(graph.faces.len(), &features), &tolerances)
     };
     let area_with = |keep: &dyn Fn(&FaceRole) -> bool| -> f64 {
         graph.faces.iter().filter(|f| keep(&pairing.roles[f.id])).map(|f| f.area).sum()

@@ -125,6 +125,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
                 reach: tolerances.joint_reach + skin,
                 on_rim: crate::tolerance::on_rim(m.plan.thickness.mean, part.solids[m.solid - 1].mesh_tolerance),
                 junction: junctions[m.solid - 1],
+                wall: (m.solid, m.plan.group),
             }
         })
         .collect();

@@ -27,6 +27,8 @@ pub struct PatchInfo {
     /// A patch of its solid was made with a junction loop filled (`pairs_report::junction_loops`): the pieces
     /// outside the material (the filling across the branch's bore, the branch's strip past the main) are trimmed.
     pub junction: bool,
+    /// The wall (solid, pair group) the patch was made from: the levels of a thickness step share it.
+    pub wall: (usize, usize),
 }
 
 /// The joints made between two patches (or tried from one), summed over their edges.
@@ -239,11 +241,10 @@ fn grow(
     let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
     let patch_of: Vec<usize> = fused.faces.iter().map(|f| f.patch).collect();
 
-    // (patch, strip, joint key, probe) per extended edge; joint keys of the edges with no partner.
-    let mut planned: Vec<(usize, StripRequest, JointKey, &EdgeProbe)> = Vec::new();
-    // (patch, probe, length) of the edges that found no partner and no rim.
-    let mut loose: Vec<(usize, &EdgeProbe, f64)> = Vec::new();
-    for (&(edge, face), p) in free.iter().zip(probes) {
+    // Per free edge: the strip it grows with its joint key, if any; and the open edges the step search sees.
+    let mut grows: Vec<Option<Planned>> = Vec::new();
+    let mut open_edges: Vec<OpenEdge> = Vec::new();
+    for (k, (&(edge, face), p)) in free.iter().zip(probes).enumerate() {
         let patch = patch_of[face];
         let length = fused.edges[edge].length;
         let verdict = match pass {
@@ -254,30 +255,41 @@ fn grow(
             // Only growth to the rim; an edge that found no partner before is not counted again.
             Pass::Rims => Verdict::Rim,
         };
-        match verdict {
+        let grow = match verdict {
             verdict @ (Verdict::Rim | Verdict::Unresolved) => match to_rim(fused, edge, face, p, patches, solids) {
-                Some(lengths) => planned.push((
+                Some(lengths) => Some((
                     patch,
                     StripRequest { edge, face, lengths, onto_face: false },
                     (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
                     p,
                 )),
-                None if verdict == Verdict::Unresolved => loose.push((patch, p, length)),
-                None => {}
+                None => {
+                    // A rim edge may still be the thicker level of a step: the thinner level's edge lies on the
+                    // boundary past it, so its outside reads as out of the material.
+                    let open = verdict == Verdict::Unresolved;
+                    if pass == Pass::Joints {
+                        open_edges.push(OpenEdge { free: k, patch, probe: p, length, nearest: f64::INFINITY, open });
+                    }
+                    None
+                }
             },
             Verdict::Extend(x) => {
+                open_edges.push(OpenEdge { free: k, patch, probe: p, length, nearest: x.distance, open: true });
                 let mut ids = vec![patch + 1, x.partner + 1];
                 ids.sort_unstable();
-                planned.push((
+                Some((
                     patch,
                     StripRequest { edge, face, lengths: x.lengths, onto_face: x.kind == joint::JointKind::T },
                     (ids, x.kind.name(), "extended"),
                     p,
-                ));
+                ))
             }
-        }
+        };
+        grows.push(grow);
     }
-    let steps = step_quads(&loose, &thickness, tally);
+    let (steps, bridged) = step_quads(&open_edges, patches, tally);
+    let planned: Vec<Planned> =
+        grows.into_iter().enumerate().filter(|(k, _)| !bridged.contains(k)).filter_map(|(_, g)| g).collect();
     if pass == Pass::Rims && planned.is_empty() && steps.is_empty() {
         return Ok(None);
     }
@@ -355,48 +367,60 @@ fn grow(
     Ok(Some((again, keep, branches)))
 }
 
-/// The quads bridging loose edges across thickness steps (`joint::step_bridges`), each owned by its `owner`
-/// edge's patch, with its joint key and the lengths of both edges; the edges left alone are tallied as having no
-/// partner.
-fn step_quads(
-    loose: &[(usize, &EdgeProbe, f64)],
-    thickness: &[f64],
-    tally: &mut JointTally,
-) -> Vec<(usize, CornerRequest, JointKey, [f64; 2])> {
-    let edges: Vec<joint::LooseEdge> = loose
+/// A free edge for the step search: its index among the free edges, patch, probe, length, how far away the
+/// partner its rays found is (infinite for none), and whether it is open (else on the rim).
+struct OpenEdge<'a> {
+    free: usize,
+    patch: usize,
+    probe: &'a EdgeProbe,
+    length: f64,
+    nearest: f64,
+    open: bool,
+}
+
+/// The quads bridging open edges across thickness steps (`joint::step_bridges`), each owned by its `owner`
+/// edge's patch, with its joint key and the lengths of both edges; and the free edges (indices) bridged. The
+/// edges that found no partner and no bridge are tallied as having no partner.
+fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) -> (Vec<StepQuad>, BTreeSet<usize>) {
+    let edges: Vec<joint::LooseEdge> = open
         .iter()
-        .map(|&(patch, p, _)| {
+        .map(|e| {
+            let p = e.probe;
             let mid = p.points.len() / 2;
             joint::LooseEdge {
-                patch,
-                thickness: thickness[patch],
+                patch: e.patch,
+                wall: patches[e.patch].wall,
+                thickness: patches[e.patch].thickness,
+                nearest: e.nearest,
+                open: e.open,
                 points: p.points.clone(),
                 normal: p.normals[mid],
                 outward: p.outward[mid],
             }
         })
         .collect();
-    let mut bridged = vec![false; loose.len()];
+    let mut bridged = vec![false; open.len()];
     let mut out = Vec::new();
     for joint::StepBridge { owner, other, quad, normal } in joint::step_bridges(&edges) {
         (bridged[owner], bridged[other]) = (true, true);
         let mut ids = vec![edges[owner].patch + 1, edges[other].patch + 1];
         ids.sort_unstable();
         let request = CornerRequest { points: quad, normal };
-        let lengths = [loose[owner].2, loose[other].2];
+        let lengths = [open[owner].length, open[other].length];
         out.push((edges[owner].patch, request, (ids, joint::JointKind::Step.name(), "extended"), lengths));
     }
-    for (&(patch, _, length), _) in loose.iter().zip(&bridged).filter(|(_, &b)| !b) {
-        tally.add((vec![patch + 1], "none", "no_partner"), length);
+    for (e, _) in open.iter().zip(&bridged).filter(|(e, &b)| !b && e.open && e.nearest.is_infinite()) {
+        tally.add((vec![e.patch + 1], "none", "no_partner"), e.length);
     }
-    out
+    let free = open.iter().zip(&bridged).filter(|(_, &b)| b).map(|(e, _)| e.free).collect();
+    (out, free)
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
 /// and end both growing into the walls they meet): a quad v, a, c, b fills it, where a and b are the strips'
 /// far corners over v and c = a + b - v. Edges continuing each other (outward directions within 10 degrees)
 /// need none; at a reflex corner the strips overlap instead.
-fn corners(planned: &[(usize, StripRequest, JointKey, &EdgeProbe)], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
+fn corners(planned: &[Planned], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
     let same_point = (fuzzy * 10.0).max(1e-9);
     let continuing = 10f64.to_radians().cos();
     // (point, direction along the edge into that end, outward, length, normal) at both ends of a strip.
@@ -460,6 +484,12 @@ fn classify_free(
 
 /// Patch ids (sorted), kind, status.
 type JointKey = (Vec<usize>, &'static str, &'static str);
+
+/// A strip to grow: its patch, the request, its joint key and the probe of its edge.
+type Planned<'a> = (usize, StripRequest, JointKey, &'a EdgeProbe);
+
+/// A step bridge: the patch owning it, the quad, its joint key and the lengths of its two edges.
+type StepQuad = (usize, CornerRequest, JointKey, [f64; 2]);
 
 /// Edges and length per joint key, in key order (deterministic).
 #[derive(Default)]

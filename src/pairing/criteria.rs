@@ -97,6 +97,30 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
     joined_by_skin.then_some(Rejection::Stub { width, thickness: pair.thickness.mean, top: false })
 }
 
+/// A planar face narrower than its distance to its partner cannot be a shell of its own. When that partner
+/// pairs with another face wide enough to be a wall (at least as wide as that pair is thick) at a different
+/// thickness, the narrow face is a minor level of the wall (a groove's floor, a rebate or a bead along it): the
+/// wall's patch runs on past it. Returns the narrow face and the rejection. A narrow strip between two ribs keeps
+/// its pair: it lies at the wall's own level.
+pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs: &[Pair], same: f64) -> Option<(FaceId, Rejection)> {
+    let t = pair.thickness.mean;
+    pair.faces.iter().enumerate().find_map(|(k, &face)| {
+        let partner = pair.faces[1 - k];
+        let width = graph.face_width(face);
+        if width >= t || !all_planar(graph, &[face]) {
+            return None;
+        }
+        let wall = pairs.iter().find(|q| {
+            let other = if q.faces[0] == partner { q.faces[1] } else { q.faces[0] };
+            q.faces.contains(&partner)
+                && other != face
+                && graph.face_width(other) >= q.thickness.mean
+                && (q.thickness.mean - t).abs() > same
+        })?;
+        Some((face, Rejection::MinorLevel { width, thickness: t, wall: wall.thickness.mean }))
+    })
+}
+
 fn all_planar(graph: &FaceGraph, faces: &[FaceId]) -> bool {
     faces.iter().all(|&f| matches!(graph.faces[f].surface, Surface::Plane { .. }))
 }

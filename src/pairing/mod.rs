@@ -110,6 +110,13 @@ pub enum Rejection {
         thickness: f64,
         top: bool,
     },
+    /// A planar face narrower than its distance to its partner, which pairs at another thickness with a face
+    /// wide enough to be a wall: a minor level of that wall (a groove's floor, a rebate or a bead along it).
+    MinorLevel {
+        width: f64,
+        thickness: f64,
+        wall: f64,
+    },
 }
 
 impl Rejection {
@@ -123,7 +130,7 @@ impl Rejection {
             Rejection::Distance { .. } => 5,
             Rejection::Overlap { .. } => 6,
             Rejection::Spread { .. } => 7,
-            Rejection::Stub { .. } => 8,
+            Rejection::Stub { .. } | Rejection::MinorLevel { .. } => 8,
         }
     }
 
@@ -152,6 +159,11 @@ impl Rejection {
             }
             Rejection::Stub { width, thickness, top: true } => {
                 format!("a face {width:.4} wide standing proud, {thickness:.4} from its partner: the top of a stub")
+            }
+            Rejection::MinorLevel { width, thickness, wall } => {
+                format!(
+                    "a face {width:.4} wide, {thickness:.4} from its partner, on a wall {wall:.4} thick: a minor level"
+                )
             }
         }
     }
@@ -188,7 +200,7 @@ impl Pairing {
 
 /// Finds the face pairs of a solid. `pairable[f]` false leaves face f out (a suppressed feature).
 pub fn detect(graph: &FaceGraph, tol: &Tolerances, pairable: &[bool]) -> Pairing {
-    assemble(graph, &test_candidates(graph, tol), pairable)
+    assemble(graph, &test_candidates(graph, tol), pairable, tol)
 }
 
 /// A candidate pair of faces and the verdict of the pair tests on it.
@@ -204,7 +216,7 @@ pub fn test_candidates(graph: &FaceGraph, tol: &Tolerances) -> Vec<Tested> {
 }
 
 /// The pairing of a solid from its `tested` candidates, leaving out the faces not `pairable`.
-pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool]) -> Pairing {
+pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool], tol: &Tolerances) -> Pairing {
     let mut pairs = Vec::new();
     let mut near: Vec<Option<NearMiss>> = vec![None; graph.faces.len()];
     for &(a, b, ref verdict) in tested {
@@ -243,6 +255,17 @@ pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool]) -> Pair
             for (me, other) in [(pair.faces[0], pair.faces[1]), (pair.faces[1], pair.faces[0])] {
                 near[me] = Some(NearMiss { candidate: other, rejection: rejection.clone() });
             }
+            false
+        }
+    });
+    let minor: Vec<Option<(FaceId, Rejection)>> =
+        pairs.iter().map(|pair| criteria::minor_level(graph, pair, &pairs, tol.point)).collect();
+    let mut minor = minor.into_iter();
+    pairs.retain(|pair| match minor.next().flatten() {
+        None => true,
+        Some((face, rejection)) => {
+            let other = if pair.faces[0] == face { pair.faces[1] } else { pair.faces[0] };
+            near[face] = Some(NearMiss { candidate: other, rejection });
             false
         }
     });

@@ -394,3 +394,35 @@ fn a_narrow_face_standing_proud_is_the_top_of_a_stub_not_a_skin() {
         }
     }
 }
+
+#[test]
+fn a_groove_narrower_than_the_wall_is_a_minor_level_of_it() {
+    // A 2.0 plate (back 0) whose top is split by a groove along x: top skins 1 and 3 beside it, the groove's
+    // floor 2 at `floor`. A floor 1.0 wide and 1.2 from the back is a minor level and does not pair; at the
+    // plate's own level (a strip between two ribs) it stays a skin; and a floor wider than its distance to the
+    // back is a level of its own.
+    let plate = |floor: f64, width: f64| {
+        vec![
+            rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+            rect(DVec3::new(0.0, 0.0, 2.0), DVec3::X * 60.0, DVec3::Y * 19.0, DVec3::Z),
+            rect(DVec3::new(0.0, 19.0, floor), DVec3::X * 60.0, DVec3::Y * width, DVec3::Z),
+            rect(DVec3::new(0.0, 19.0 + width, 2.0), DVec3::X * 60.0, DVec3::Y * (21.0 - width), DVec3::Z),
+        ]
+    };
+    for (floor, width, floor_pairs) in [(1.2, 1.0, false), (2.0, 1.0, true), (1.2, 1.3, true)] {
+        // The floor's outline: its two long sides (to the groove's walls, here straight to the skins) and ends.
+        let edges = [
+            (1, 2, Convexity::Concave, 60.0),
+            (2, 3, Convexity::Concave, 60.0),
+            (0, 2, Convexity::Convex, 2.0 * width),
+        ];
+        let pairing = detect(&graph_with_lengths(plate(floor, width), &edges), &tol(), &[true; 4]);
+        let paired: Vec<[usize; 2]> = pairing.pairs.iter().map(|p| p.faces).collect();
+        let expected = if floor_pairs { vec![[0, 1], [0, 2], [0, 3]] } else { vec![[0, 1], [0, 3]] };
+        assert_eq!(paired, expected, "floor at {floor}, {width} wide");
+        // Between the plate's two skins the floor is one of its wall's side faces.
+        if !floor_pairs {
+            assert_eq!(pairing.roles[2], FaceRole::Thickness { group: 0 });
+        }
+    }
+}
