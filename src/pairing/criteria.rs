@@ -66,20 +66,35 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
     Ok(Pair { faces: [a.min(b), a.max(b)], kind, thickness, overlap_area })
 }
 
-/// A planar face narrower than the wall is thick and standing proud of its surroundings (no concave edge) is
-/// the top of a stub (a land between two shallow pockets, a bead), not a skin of a wall: the stub's material
-/// belongs to the wall it stands on, whose patch runs on beneath it. Width is 2 x area / perimeter (the width
-/// of a band). A narrow strip between two ribs stays paired: its edges to the ribs are concave.
+/// A narrow face stands proud when less than this share of its outline is concave: each long side of a strip is
+/// nearly half its outline, so one concave long side (a strip beside a rib) is not proud, while concave ends
+/// (a land running into walls, the corner blends at a lip's ends) still are.
+const PROUD_CONCAVE_SHARE: f64 = 0.25;
+
+/// A planar face narrower than the wall is thick and standing proud of its surroundings (no concave long side),
+/// whichever face of the pair it is, is the top of a stub (a land between two shallow pockets, a bead, a lip
+/// along a plate's edge), not a skin of a wall: the stub's material belongs to the wall it stands on, whose patch
+/// runs on beneath it. Width is 2 x area / perimeter (the width of a band). A narrow strip between two ribs
+/// stays paired: its edges to the ribs are concave.
 fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64) -> Result<(), Rejection> {
     if !all_planar(graph, &faces) {
         return Ok(());
     }
-    let widths = faces.map(|f| graph.face_width(f));
-    let narrow = if widths[0] <= widths[1] { 0 } else { 1 };
-    let face = &graph.faces[faces[narrow]];
-    let proud = || face.loops.iter().flatten().all(|&e| graph.edges[e].convexity != Convexity::Concave);
-    if widths[narrow] < thickness && proud() {
-        return Err(Rejection::Stub { width: widths[narrow], thickness, top: true });
+    let proud = |f: FaceId| {
+        let (mut concave, mut outline) = (0.0, 0.0);
+        for &e in graph.faces[f].loops.iter().flatten() {
+            outline += graph.edges[e].length;
+            if graph.edges[e].convexity == Convexity::Concave {
+                concave += graph.edges[e].length;
+            }
+        }
+        concave < PROUD_CONCAVE_SHARE * outline
+    };
+    for face in faces {
+        let width = graph.face_width(face);
+        if width < thickness && proud(face) {
+            return Err(Rejection::Stub { width, thickness, top: true });
+        }
     }
     Ok(())
 }

@@ -426,3 +426,34 @@ fn a_groove_narrower_than_the_wall_is_a_minor_level_of_it() {
         }
     }
 }
+
+#[test]
+fn a_lip_along_a_plate_edge_is_a_stub_whichever_face_is_proud() {
+    // A plate's end face (0: z=0, facing -z, 1.7 wide) runs on under a lip whose top (1: z=1.9, facing +z,
+    // 0.95 wide) meets the plate's skin along a concave edge. The end face is the proud one: convex long sides,
+    // concave only at its short ends (corner blends). The pair is the top of a stub, not a wall 1.9 thick.
+    let faces = vec![
+        rect(DVec3::new(-2.8, 0.0, 0.0), DVec3::Y * 90.0, DVec3::X * 1.7, -DVec3::Z),
+        rect(DVec3::new(-3.0, 0.0, 1.9), DVec3::X * 0.95, DVec3::Y * 90.0, DVec3::Z),
+        rect(DVec3::new(-2.05, 0.0, 1.9), DVec3::Y * 90.0, DVec3::Z * 50.0, -DVec3::X),
+    ];
+    for ends in [Convexity::Concave, Convexity::Convex] {
+        let edges = [
+            (0, 2, Convexity::Convex, 90.0),
+            (0, 2, Convexity::Convex, 90.0),
+            (0, 2, ends, 1.7),
+            (0, 2, ends, 1.7),
+            (1, 2, Convexity::Concave, 90.0),
+            (1, 2, Convexity::Convex, 90.0),
+        ];
+        let pairing = detect(&graph_with_lengths(faces.clone(), &edges), &tol(), &[true; 3]);
+        assert!(pairing.pairs.is_empty(), "ends {ends:?}");
+        assert!(matches!(
+            &pairing.roles[0],
+            FaceRole::Unpaired { near_miss: Some(NearMiss { rejection: Rejection::Stub { top: true, .. }, .. }) }
+        ));
+    }
+    // With a concave long side the end face is a skin again (a strip beside a rib): the pair stands.
+    let edges = [(0, 2, Convexity::Concave, 90.0), (0, 2, Convexity::Convex, 90.0), (1, 2, Convexity::Concave, 90.0)];
+    assert_eq!(detect(&graph_with_lengths(faces, &edges), &tol(), &[true; 3]).pairs.len(), 1);
+}
