@@ -180,12 +180,22 @@ impl FaceGraph {
     /// Mean width of a face, 2 x area / perimeter: the width of a long band, the radius of a disc. Unbounded
     /// for a face without edges (a hand-made graph's): nothing says it is narrow.
     pub fn face_width(&self, face: FaceId) -> f64 {
-        let perimeter: f64 = self.faces[face].loops.iter().flatten().map(|&e| self.edges[e].length).sum();
+        let perimeter = self.perimeter(face);
         if perimeter > 0.0 {
             2.0 * self.faces[face].area / perimeter
         } else {
             f64::INFINITY
         }
+    }
+
+    /// Length of all of the face's loops.
+    pub fn perimeter(&self, face: FaceId) -> f64 {
+        self.faces[face].loops.iter().flatten().map(|&e| self.edges[e].length).sum()
+    }
+
+    /// The faces across `edge` from `face`.
+    pub fn across(&self, edge: EdgeId, face: FaceId) -> impl Iterator<Item = FaceId> + '_ {
+        self.edges[edge].faces.iter().copied().filter(move |&g| g != face)
     }
 
     /// Faces adjacent to `face` through an edge (excluding itself), sorted and deduplicated.

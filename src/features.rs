@@ -107,11 +107,6 @@ pub struct Feature {
     pub fill: Vec<EdgeId>,
 }
 
-/// The faces across `edge` from `face`.
-fn across(graph: &FaceGraph, edge: EdgeId, face: FaceId) -> impl Iterator<Item = FaceId> + '_ {
-    graph.edges[edge].faces.iter().copied().filter(move |&g| g != face)
-}
-
 fn is_skin(role: &FaceRole) -> bool {
     matches!(role, FaceRole::Pair { .. })
 }
@@ -123,7 +118,7 @@ fn region_behind(graph: &FaceGraph, base: FaceId, lp: &[EdgeId], limit: f64) -> 
     const MAX_FACES: usize = 64;
     let small = |f: FaceId| graph.faces[f].bbox.diagonal() <= limit;
     let mut region: BTreeSet<FaceId> = BTreeSet::new();
-    let mut queue: Vec<FaceId> = lp.iter().flat_map(|&e| across(graph, e, base)).collect();
+    let mut queue: Vec<FaceId> = lp.iter().flat_map(|&e| graph.across(e, base)).collect();
     while let Some(f) = queue.pop() {
         if f == base || region.contains(&f) || !small(f) {
             continue;
@@ -133,7 +128,7 @@ fn region_behind(graph: &FaceGraph, base: FaceId, lp: &[EdgeId], limit: f64) -> 
             return None;
         }
         for lp in &graph.faces[f].loops {
-            queue.extend(lp.iter().flat_map(|&e| across(graph, e, f)));
+            queue.extend(lp.iter().flat_map(|&e| graph.across(e, f)));
         }
     }
     (!region.is_empty() && diagonal(graph, &region) <= limit).then_some(region)
@@ -192,7 +187,7 @@ fn chamfer_width(graph: &FaceGraph, roles: &[FaceRole], face: FaceId) -> Option<
     let neighbour = |e: EdgeId| {
         let edge = &graph.edges[e];
         let turn = edge.angle.abs().to_degrees();
-        let other = across(graph, e, face).next()?;
+        let other = graph.across(e, face).next()?;
         (BEVEL.contains(&turn) && edge.faces.len() == 2).then_some((other, edge.convexity))
     };
     let ((fa, ca), (fb, cb)) = (neighbour(a)?, neighbour(b)?);
@@ -251,7 +246,7 @@ pub fn recognise(graph: &FaceGraph, roles: &[FaceRole], limits: &Limits, toleran
             Surface::Cylinder { radius, .. } | Surface::Torus { minor_radius: radius, .. } => {
                 let tangent_to_skin = face.loops.iter().flatten().any(|&e| {
                     graph.edges[e].convexity == Convexity::Smooth
-                        && across(graph, e, face.id).any(|g| is_skin(&roles[g]))
+                        && graph.across(e, face.id).any(|g| is_skin(&roles[g]))
                 });
                 if !tangent_to_skin {
                     continue;

@@ -140,8 +140,8 @@ pub fn decide(
 
 /// How far past its samples a free edge with no partner must grow to reach the part's boundary, or None when
 /// it is on the rim already (median shortfall <= `on_rim`) or most samples are not inside the material with
-/// the boundary within reach. Each sample is first moved `to_mid` along the patch normal to the middle of the wall; `exit(q, d)`
-/// is the distance from q, inside the material, along d to the boundary, if within `reach`.
+/// the boundary within reach. Each sample is first moved `to_mid` along the patch normal to the middle of the
+/// wall; `exit(q, d)` is the distance from q, inside the material, along d to the boundary, if within `reach`.
 pub fn rim_shortfall(
     probe: &EdgeProbe,
     to_mid: f64,
@@ -215,14 +215,14 @@ pub struct StepBridge {
 }
 
 /// Bridges across thickness steps and in-plane gaps (the in-plane joint): two straight free edges of
-/// different, parallel patches that may bridge (`bridgeable`), running side by side and facing each other (outward directions opposite),
-/// whose levels differ by at most the larger thickness and whose in-plane gap is no wider than it. The quad
-/// between the edges over the stretch they share fills an in-plane gap. A step steeper than 45 degrees and
-/// higher than `STEP_LEVEL_SHARE` of the thinner wall is laid down into a ramp from the thinner patch's edge
-/// to a line `RAMP_RUN` x its thickness inside the thicker patch (whose strip past that line trimming drops),
-/// when that edge spans the thicker one: a face standing across the wall would give a crash mesh elements as
-/// short as the step, and has no wall thickness of its own (the judge measures it along the wall). Each edge
-/// is bridged once, nearest pairs first, sorted by (owner, other).
+/// different, parallel patches that may bridge (`bridgeable`), running side by side and facing each other
+/// (outward directions opposite), whose levels differ by at most the larger thickness and whose in-plane gap
+/// is no wider than it. The quad between the edges over the stretch they share fills an in-plane gap. A step
+/// steeper than 45 degrees and higher than `STEP_LEVEL_SHARE` of the thinner wall is laid down into a ramp from
+/// the thinner patch's edge to a line `RAMP_RUN` x its thickness inside the thicker patch (whose strip past that
+/// line trimming drops), when that edge spans the thicker one: a face standing across the wall would give a
+/// crash mesh elements as short as the step, and has no wall thickness of its own (the judge measures it along
+/// the wall). Each edge is bridged once, nearest pairs first, sorted by (owner, other).
 pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     let parallel = STEP_PARALLEL_DEG.to_radians().cos();
     let line = |e: &LooseEdge| -> Option<(DVec3, DVec3, f64)> {
@@ -254,6 +254,10 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
             // The thick edge's line relative to the thin one's: its offset (level and in-plane gap) and where it
             // starts and ends on u.
             let offset = (b - a).reject_from_normalized(u);
+            let gap = offset.length();
+            if !bridgeable(et, ek, gap) {
+                continue;
+            }
             let level = offset.dot(et.normal).abs();
             if level > reach || offset.dot(et.outward).abs() > reach {
                 continue;
@@ -273,18 +277,13 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
             let far = offset - ek.outward * run;
             let on_a = |s: f64| a + u * s;
             let quad = [on_a(s0), on_a(s0) + far, on_a(s1) + far, on_a(s1)];
-            let bridge = if ramp {
-                StepBridge { owner: thin, other: thick, quad, normal: et.normal }
-            } else if thin == i {
-                StepBridge { owner: thin, other: thick, quad, normal: et.outward }
+            let bridge = if ramp || thin == i {
+                StepBridge { owner: thin, other: thick, quad, normal: if ramp { et.normal } else { et.outward } }
             } else {
                 // A flat or upright bridge joins the first edge's patch: the same quad seen from the other side.
                 StepBridge { owner: thick, other: thin, quad: [quad[1], quad[0], quad[3], quad[2]], normal: ek.outward }
             };
-            if !bridgeable(et, ek, offset.length()) {
-                continue;
-            }
-            candidates.push((offset.length(), bridge));
+            candidates.push((gap, bridge));
         }
     }
     let key = |b: &StepBridge| (b.owner.min(b.other), b.owner.max(b.other));

@@ -73,8 +73,9 @@ impl SolidPairing {
 /// wall or a suppressed blend at the junction, at least one the former; a hole's loop borders its bore. Only
 /// on curved skins: a strip grown along a plane stays on it.
 ///
-/// Not yet: a hole across a tube's seam, which is no inner loop (the hole's edges join the outline between the
-/// two pieces of the seam); its edges are joined as before, by strips from both sides.
+/// Returns the loops' edges, sorted. Not yet: a hole across a tube's seam, which is no inner loop (the hole's
+/// edges join the outline between the two pieces of the seam); its edges are joined as before, by strips from
+/// both sides.
 pub fn junction_loops(graph: &FaceGraph, roles: &[FaceRole]) -> Vec<EdgeId> {
     let mut out = Vec::new();
     for face in &graph.faces {
@@ -82,19 +83,20 @@ pub fn junction_loops(graph: &FaceGraph, roles: &[FaceRole]) -> Vec<EdgeId> {
         if matches!(face.surface, Surface::Plane { .. }) {
             continue; // a strip along a plane stays on it: the hole's edges are joined from both sides
         }
-        let across = |e: &EdgeId| graph.edges[*e].faces.iter().copied().filter(move |&h| h != face.id);
         let wall = |h: usize| matches!(roles[h], FaceRole::Pair { group: k, .. } if k != group);
         let blend = |h: usize| matches!(roles[h], FaceRole::Suppressed);
         let joins = |e: &EdgeId| {
-            let mut others = across(e).peekable();
+            let mut others = graph.across(*e, face.id).peekable();
             others.peek().is_some() && others.all(|h| wall(h) || blend(h))
         };
         for lp in face.loops.iter().skip(1) {
-            if lp.iter().all(joins) && lp.iter().any(|e| across(e).any(wall)) {
+            if lp.iter().all(joins) && lp.iter().any(|&e| graph.across(e, face.id).any(wall)) {
                 out.extend(lp.iter().copied());
             }
         }
     }
+    out.sort_unstable();
+    out.dedup();
     out
 }
 
@@ -132,9 +134,7 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
         })
         .map(|f| f.area)
         .sum();
-    let mut junction = junction_loops(graph, &pairing.roles);
-    junction.sort_unstable();
-    junction.dedup();
+    let junction = junction_loops(graph, &pairing.roles);
     SolidPairing {
         t_max_source,
         estimate,

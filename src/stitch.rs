@@ -104,6 +104,9 @@ fn trim(fused: &Fused, patches: &[PatchInfo], solids: &[SolidMesh]) -> (Vec<bool
     let keep = keep_mask(fused.faces.len(), &branches);
     // Only where a junction was filled: elsewhere a piece of a patch out of the material is an overshoot the
     // joints still use (dropping them all made ender3_x_limit's and fw13_top_cover's stitching worse).
+    if !patches.iter().any(|p| p.junction) {
+        return (keep, branches);
+    }
     branches.extend(outside_material(fused, &keep, |face| {
         let patch = &patches[face.patch];
         !patch.junction || solids[patch.solid].contains(face.point + face.normal * patch.to_mid)

@@ -2,17 +2,12 @@
 
 mod common;
 
-use common::{midsurf, outcome, root, scratch};
-use serde_json::Value;
+use common::{midsurf, outcome, read_json, root, scratch};
 
 fn run(input: &str, output: &std::path::Path, report: &std::path::Path, extra: &[&str]) -> common::Outcome {
     let mut cmd = midsurf();
     cmd.args(["run", input, "-o", output.to_str().unwrap(), "--report", report.to_str().unwrap()]).args(extra);
     outcome(&mut cmd)
-}
-
-fn read_json(path: &std::path::Path) -> Value {
-    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
 #[test]

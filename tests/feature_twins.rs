@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{midsurf, outcome, scratch};
+use common::{midsurf, outcome, read_json, scratch};
 use serde_json::Value;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -38,7 +38,7 @@ fn run_once(fixture: &str) -> Twin {
     assert_eq!(o.code, 0, "{fixture}: {}", o.stderr);
     let text = std::fs::read_to_string(&summary).unwrap();
     let stripped: Vec<&str> = text.lines().map(|l| l.split(" source=").next().unwrap()).collect();
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let report = read_json(&report);
     let features = report["solids"][0]["suppressed"]
         .as_array()
         .unwrap()
@@ -120,7 +120,7 @@ fn limits_from_the_command_line_keep_features() {
                 .args(&flag),
         );
         assert!(o.code <= 1, "{fixture}: {}", o.stderr);
-        let report: Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        let report = read_json(&report);
         assert_eq!(report["solids"][0]["suppressed"], Value::Array(vec![]), "{fixture} {flag:?}");
     }
 }

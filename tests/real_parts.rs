@@ -6,8 +6,7 @@ mod common;
 
 use std::path::PathBuf;
 
-use common::{midsurf, outcome, root, scratch};
-use serde_json::Value;
+use common::{midsurf, outcome, read_json, root, scratch};
 
 fn parts_dir() -> Option<PathBuf> {
     let shared = std::env::var_os("MIDSURF_SHARED").map(PathBuf::from).unwrap_or_else(|| root().join("../shared"));
@@ -44,7 +43,7 @@ fn named_sheet_metal_parts_come_out_connected_and_stitched() {
                 .arg(&report),
         );
         assert!(o.code <= 1, "{name}: {}", o.stderr);
-        let r: Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        let r = read_json(&report);
         let free = &r["result"]["free_edges"];
         let (open, rim) = (free["open_length"].as_f64().unwrap(), free["rim_length"].as_f64().unwrap());
         let components = r["topology"]["components"].as_u64().unwrap();

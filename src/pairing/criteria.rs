@@ -81,14 +81,9 @@ fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64) -> Result<
         return Ok(());
     }
     let proud = |f: FaceId| {
-        let (mut concave, mut outline) = (0.0, 0.0);
-        for &e in graph.faces[f].loops.iter().flatten() {
-            outline += graph.edges[e].length;
-            if graph.edges[e].convexity == Convexity::Concave {
-                concave += graph.edges[e].length;
-            }
-        }
-        concave < PROUD_CONCAVE_SHARE * outline
+        let edges = graph.faces[f].loops.iter().flatten().map(|&e| &graph.edges[e]);
+        let concave: f64 = edges.filter(|e| e.convexity == Convexity::Concave).map(|e| e.length).sum();
+        concave < PROUD_CONCAVE_SHARE * graph.perimeter(f)
     };
     for face in faces {
         let width = graph.face_width(face);
@@ -115,22 +110,19 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
 /// A planar face narrower than its distance to its partner cannot be a shell of its own. When that partner
 /// pairs with another face wide enough to be a wall (at least as wide as that pair is thick) at a different
 /// thickness, the narrow face is a minor level of the wall (a groove's floor, a rebate or a bead along it): the
-/// wall's patch runs on past it. Returns the narrow face and the rejection. A narrow strip between two ribs keeps
-/// its pair: it lies at the wall's own level.
-pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs: &[Pair], same: f64) -> Option<(FaceId, Rejection)> {
+/// wall's patch runs on past it. `pairs_of[f]`: the pairs of face f. Returns the narrow face and the rejection.
+/// A narrow strip between two ribs keeps its pair: it lies at the wall's own level.
+pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same: f64) -> Option<(FaceId, Rejection)> {
     let t = pair.thickness.mean;
-    pair.faces.iter().enumerate().find_map(|(k, &face)| {
-        let partner = pair.faces[1 - k];
+    pair.faces.iter().find_map(|&face| {
         let width = graph.face_width(face);
         if width >= t || !all_planar(graph, &[face]) {
             return None;
         }
-        let wall = pairs.iter().find(|q| {
-            let other = if q.faces[0] == partner { q.faces[1] } else { q.faces[0] };
-            q.faces.contains(&partner)
-                && other != face
-                && graph.face_width(other) >= q.thickness.mean
-                && (q.thickness.mean - t).abs() > same
+        let partner = pair.other(face);
+        let wall = pairs_of[partner].iter().find(|q| {
+            let other = q.other(partner);
+            other != face && (q.thickness.mean - t).abs() > same && graph.face_width(other) >= q.thickness.mean
         })?;
         Some((face, Rejection::MinorLevel { width, thickness: t, wall: wall.thickness.mean }))
     })

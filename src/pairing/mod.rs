@@ -68,6 +68,17 @@ pub struct Pair {
     pub overlap_area: f64,
 }
 
+impl Pair {
+    /// The face paired with `face` (one of the two).
+    pub fn other(&self, face: FaceId) -> FaceId {
+        if self.faces[0] == face {
+            self.faces[1]
+        } else {
+            self.faces[0]
+        }
+    }
+}
+
 /// Why a candidate did not pair. Variants are ordered by how far the candidate got through the tests, so the
 /// greatest rejection of a face is its most telling one.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -252,20 +263,23 @@ pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool], tol: &T
     pairs.retain(|pair| match criteria::stub_sides(graph, pair, &skins) {
         None => true,
         Some(rejection) => {
-            for (me, other) in [(pair.faces[0], pair.faces[1]), (pair.faces[1], pair.faces[0])] {
-                near[me] = Some(NearMiss { candidate: other, rejection: rejection.clone() });
+            for me in pair.faces {
+                near[me] = Some(NearMiss { candidate: pair.other(me), rejection: rejection.clone() });
             }
             false
         }
     });
+    let mut pairs_of: Vec<Vec<&Pair>> = vec![Vec::new(); graph.faces.len()];
+    for pair in &pairs {
+        pair.faces.iter().for_each(|&f| pairs_of[f].push(pair));
+    }
     let minor: Vec<Option<(FaceId, Rejection)>> =
-        pairs.iter().map(|pair| criteria::minor_level(graph, pair, &pairs, tol.point)).collect();
+        pairs.iter().map(|pair| criteria::minor_level(graph, pair, &pairs_of, tol.point)).collect();
     let mut minor = minor.into_iter();
     pairs.retain(|pair| match minor.next().flatten() {
         None => true,
         Some((face, rejection)) => {
-            let other = if pair.faces[0] == face { pair.faces[1] } else { pair.faces[0] };
-            near[face] = Some(NearMiss { candidate: other, rejection });
+            near[face] = Some(NearMiss { candidate: pair.other(face), rejection });
             false
         }
     });

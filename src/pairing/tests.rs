@@ -371,6 +371,13 @@ fn a_short_tab_joined_only_by_its_edge_faces_stays_a_wall() {
     assert_eq!(pairing.pairs.iter().map(|p| p.faces).collect::<Vec<_>>(), vec![[0, 1]]);
 }
 
+fn is_stub_top(role: &FaceRole) -> bool {
+    matches!(
+        role,
+        FaceRole::Unpaired { near_miss: Some(NearMiss { rejection: Rejection::Stub { top: true, .. }, .. }) }
+    )
+}
+
 #[test]
 fn a_narrow_face_standing_proud_is_the_top_of_a_stub_not_a_skin() {
     // A strip 0.8 wide at 2.9 over a plate's back: with every edge convex it tops a bead and does not pair;
@@ -387,10 +394,7 @@ fn a_narrow_face_standing_proud_is_the_top_of_a_stub_not_a_skin() {
         let pairing = detect(&g, &tol(), &[true; 3]);
         assert_eq!(pairing.pairs.len(), pairs, "{convexity:?}");
         if pairs == 0 {
-            assert!(matches!(
-                &pairing.roles[1],
-                FaceRole::Unpaired { near_miss: Some(NearMiss { rejection: Rejection::Stub { top: true, .. }, .. }) }
-            ));
+            assert!(is_stub_top(&pairing.roles[1]));
         }
     }
 }
@@ -448,10 +452,7 @@ fn a_lip_along_a_plate_edge_is_a_stub_whichever_face_is_proud() {
         ];
         let pairing = detect(&graph_with_lengths(faces.clone(), &edges), &tol(), &[true; 3]);
         assert!(pairing.pairs.is_empty(), "ends {ends:?}");
-        assert!(matches!(
-            &pairing.roles[0],
-            FaceRole::Unpaired { near_miss: Some(NearMiss { rejection: Rejection::Stub { top: true, .. }, .. }) }
-        ));
+        assert!(is_stub_top(&pairing.roles[0]));
     }
     // With a concave long side the end face is a skin again (a strip beside a rib): the pair stands.
     let edges = [(0, 2, Convexity::Concave, 90.0), (0, 2, Convexity::Convex, 90.0), (1, 2, Convexity::Concave, 90.0)];

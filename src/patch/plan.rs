@@ -105,7 +105,7 @@ impl PatchPlan {
 
 /// The other face of each pair of `face`, sorted.
 fn partners_of(face: FaceId, pairs: &[&Pair]) -> Vec<FaceId> {
-    let mut out: Vec<FaceId> = pairs.iter().map(|p| if p.faces[0] == face { p.faces[1] } else { p.faces[0] }).collect();
+    let mut out: Vec<FaceId> = pairs.iter().map(|p| p.other(face)).collect();
     out.sort_unstable();
     out.dedup();
     out
@@ -274,7 +274,7 @@ fn draft_plan(
         .iter()
         .max_by(|a, b| a.overlap_area.total_cmp(&b.overlap_area))
         .expect("a reference face belongs to at least one pair");
-    let other = if main.faces[0] == face { main.faces[1] } else { main.faces[0] };
+    let other = main.other(face);
     let plane = |f: FaceId| match graph.faces[f].surface {
         Surface::Plane { origin, normal } => (origin, normal),
         _ => unreachable!("draft pairs are made of planes"),

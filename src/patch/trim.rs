@@ -47,6 +47,13 @@ pub struct Branch {
     pub reason: TrimReason,
 }
 
+impl Branch {
+    /// Fused piece `piece` (`face`) dropped for `reason`.
+    fn of(piece: usize, face: &FusedFace, width: f64, crossing: Vec<usize>, reason: TrimReason) -> Branch {
+        Branch { piece, patch: face.patch, area: face.area, width, crossing, reason }
+    }
+}
+
 fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
     let ab = b - a;
     let len2 = ab.length_squared();
@@ -118,14 +125,7 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             .map(|&p| lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min))
             .fold(0.0, f64::max);
         if width <= across {
-            candidates[i] = Some(Branch {
-                piece: i,
-                patch: face.patch,
-                area: face.area,
-                width,
-                crossing,
-                reason: TrimReason::Overshoot,
-            });
+            candidates[i] = Some(Branch::of(i, face, width, crossing, TrimReason::Overshoot));
         }
     }
     // A narrow piece joined (through other narrow pieces) to a piece of its patch that is not narrow continues
@@ -142,14 +142,7 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
     }
     for (i, face) in fused.faces.iter().enumerate() {
         if loose[i] && !anchored[i] {
-            candidates[i] = Some(Branch {
-                piece: i,
-                patch: face.patch,
-                area: face.area,
-                width: 0.0,
-                crossing: Vec::new(),
-                reason: TrimReason::Overshoot,
-            });
+            candidates[i] = Some(Branch::of(i, face, 0.0, Vec::new(), TrimReason::Overshoot));
         }
     }
     candidates.into_iter().zip(anchored).filter_map(|(c, a)| if a { None } else { c }).collect()
@@ -179,14 +172,7 @@ pub fn outside_material(fused: &Fused, keep: &[bool], inside: impl Fn(&FusedFace
         crossing.sort_unstable();
         crossing.dedup();
         if !crossing.is_empty() && !inside(face) {
-            out.push(Branch {
-                piece: i,
-                patch: face.patch,
-                area: face.area,
-                width: 0.0,
-                crossing,
-                reason: TrimReason::Outside,
-            });
+            out.push(Branch::of(i, face, 0.0, crossing, TrimReason::Outside));
         }
     }
     out

@@ -22,6 +22,11 @@ pub fn midsurf() -> Command {
     cmd
 }
 
+/// A JSON file (a report) parsed.
+pub fn read_json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
 /// A fresh, empty scratch directory for one test.
 pub fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("midsurf-test-{}-{name}", std::process::id()));
