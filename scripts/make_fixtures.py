@@ -339,8 +339,8 @@ def pipe_tee() -> Fixture:
     """A branch pipe (outer D 30, wall 2) entering a main pipe (outer D 40, wall 2, 120 long along x) at right
     angles, bores open into each other: the main's axis at y = z = 20, the branch's at x = 60, y = 20, up to
     z = 70. Both mid-surfaces are cylinders; the main's skins have a hole where the branch runs in (an inner loop:
-the seam runs along the bottom). Faces: 7
-    (main and branch skins inside and out, the branch's end ring, the main's two end rings). Volume: each
+    the seam runs along the bottom). Faces: 7 (main and branch skins inside and out, the branch's end ring, the
+    main's two end rings). Volume: each
     solid of revolution less its overlap with the main's outer (resp. inner) cylinder, by `cylinders_meet`.
     """
     ro, ri, bo, bi, length, rise = 20.0, 18.0, 15.0, 13.0, 120.0, 50.0

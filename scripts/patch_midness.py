@@ -120,7 +120,8 @@ def main(inp, out):
         m = (fo[tidx] == f) & ok
         if m.sum() < 3:
             continue
-        rows.append((float(np.median(asym[m])), int(f), names.get(int(f), "?"), float(area[f]), float(np.median((up + dn)[m]))))
+        measured = float(np.median((up + dn)[m]))
+        rows.append((float(np.median(asym[m])), int(f), names.get(int(f), "?"), float(area[f]), measured))
     rows.sort(reverse=True)
     # Share of the output area whose named thickness agrees with the measured one within 2%.
     agree = total = 0.0
@@ -129,7 +130,8 @@ def main(inp, out):
             named = float(name.split(" t=")[1])
             total += a
             agree += a if abs(t - named) <= 0.02 * named else 0.0
-    print(f"faces: thickness within 2% of the measured median: {agree / total * 100 if total else 0:.1f}% of the named area")
+    share = agree / total * 100 if total else 0
+    print(f"faces: thickness within 2% of the measured median: {share:.1f}% of the named area")
     # The same per patch (all samples of a patch's faces): what the report's thickness per patch claims.
     patch_of = {f: name.split(" t=")[0] for f, name in names.items() if " t=" in name}
     named_t = {name.split(" t=")[0]: float(name.split(" t=")[1]) for name in names.values() if " t=" in name}
@@ -141,13 +143,14 @@ def main(inp, out):
     # normal over 45 degrees off): there the rays run along the other wall (the judge's README says so), so a
     # short rib's T band measures the plate. A parallel patch nearby (the other level of a step) is no joint.
     face_patch = np.array([patch_of.get(int(f), "") for f in fo])
+    face_t = np.array([named_t.get(p, np.nan) for p in face_patch])  # NaN (never equal) for unnamed faces
     tri_normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     tri_normal /= np.maximum(np.linalg.norm(tri_normal, axis=1), 1e-300)[:, None]
     near = np.zeros(len(P), dtype=bool)
     for patch in named_t:
         mine = np.flatnonzero(sample_patch == patch)
         for t in sorted({t for q, t in named_t.items() if q != patch}):
-            others = np.flatnonzero([p != patch and p != "" and named_t[p] == t for p in face_patch])
+            others = np.flatnonzero((face_t == t) & (face_patch != patch))
             if len(mine) == 0 or len(others) == 0:
                 continue
             squared, closest, _ = igl.point_mesh_squared_distance(P[mine], Vo, Fo[others])

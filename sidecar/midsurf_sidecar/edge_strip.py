@@ -33,6 +33,8 @@ from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 
 # Outward directions (unit vectors) and lengths equal to this (relative) share are one sweep.
 PARALLEL = 1e-6
+# Tolerance of the faces made on a patch's own cylinder (OCCT's Precision::Confusion): they are exact.
+FACE_TOLERANCE = 1e-7
 
 
 def strip(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float], onto_face: bool = False) -> TopoDS_Face:
@@ -52,19 +54,21 @@ def _oriented_like(made: TopoDS_Face, normal: Vec) -> TopoDS_Face:
 def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[float], onto_face: bool) -> TopoDS_Face:
     far = [add_scaled(s.point, s.outward, length) for s, length in zip(samples, lengths)]
     first = samples[0].outward
-    if all(norm(sub(s.outward, first)) <= PARALLEL for s in samples) and max(lengths) - min(lengths) <= PARALLEL * max(lengths):
+    axis = _cylinder_axis(face)
+    one_length = max(lengths) - min(lengths) <= PARALLEL * max(lengths)
+    if all(norm(sub(s.outward, first)) <= PARALLEL for s in samples) and one_length:
         # One direction, one length: the edge swept straight, which keeps the patch's own surface where it
         # can (a circle along its cylinder's axis stays that cylinder), so the strip merges into the patch.
         sweep = scale(first, sum(lengths) / len(lengths))
-        made = _along_cylinder(face, edge, sweep)
+        made = _along_cylinder(face, axis, edge, sweep) if axis is not None else None
         made = made if made is not None else _prism(edge, sweep)
         if made is not None:
             return made
     # Only onto a face: the partner of an L-joint grows a ruled strip too, and the kernel could not cut the
     # cylinder band with it where the two run side by side (a branch across its main's seam).
-    axial = _axial_sweep(face, samples, lengths) if onto_face else None
+    axial = _axial_sweep(axis, samples, lengths) if onto_face and axis is not None else None
     if axial is not None:
-        made = _cylinder_band(face, edge, axial)
+        made = _cylinder_band(face, axis, edge, axial)
         made = made if made is not None else _prism(edge, axial)
         if made is not None:
             return made
@@ -104,13 +108,17 @@ def _prism(edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
     return TopoDS.Face(swept.Current()) if swept.More() else None
 
 
-def _along_cylinder(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
-    """On a cylindrical patch, an edge swept along the axis as a face of the patch's own cylinder (a prism
-    would be a surface of extrusion, which unify_same_domain cannot merge into the cylinder)."""
+def _cylinder_axis(face: TopoDS_Face) -> Vec | None:
+    """The axis direction of a cylindrical face's frame (its v direction), None for other surfaces."""
     adaptor = BRepAdaptor_Surface(face, False)
     if adaptor.GetType() != GeomAbs_Cylinder:
         return None
-    axis = xyz(adaptor.Cylinder().Axis().Direction())
+    return xyz(adaptor.Cylinder().Axis().Direction())
+
+
+def _along_cylinder(face: TopoDS_Face, axis: Vec, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
+    """On a cylindrical patch (`axis`), an edge swept along the axis as a face of the patch's own cylinder (a
+    prism would be a surface of extrusion, which unify_same_domain cannot merge into the cylinder)."""
     length = norm(sweep)
     along = dot(sweep, axis)
     if abs(abs(along) - length) > PARALLEL * length:
@@ -125,25 +133,21 @@ def _along_cylinder(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS
     if u1 - u0 <= 0.0:
         return None
     v1 = v0 + along
-    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v0, v1), max(v0, v1), 1e-7)
+    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v0, v1), max(v0, v1), FACE_TOLERANCE)
     return maker.Face() if maker.IsDone() else None
 
 
-# A curved edge of a cylindrical patch whose outward directions all lie within this angle of the axis
-# (degrees) is swept along the axis: the saddle where a branch pipe meets its main.
+# A curved edge of a cylindrical patch whose outward directions mostly (the median) lie within this angle of
+# the axis (degrees) is swept along the axis: the saddle where a branch pipe meets its main.
 AXIAL_DEG = 45.0
 
 
-def _axial_sweep(face: TopoDS_Face, samples: list, lengths: list[float]) -> Vec | None:
-    """The sweep along a cylindrical patch's axis by the longest length, when the samples grow along the axis
-    (one way; most within AXIAL_DEG, none against it). A ruled strip through a few samples of a closed saddle edge leaves the
-    cylinder between them, and its crossing with the main pipe then misses the branch's own surface; the
-    edge swept along the axis stays on the cylinder. The longer sweep at samples nearer their partner is an
-    overshoot the trimming drops."""
-    adaptor = BRepAdaptor_Surface(face, False)
-    if adaptor.GetType() != GeomAbs_Cylinder:
-        return None
-    axis = xyz(adaptor.Cylinder().Axis().Direction())
+def _axial_sweep(axis: Vec, samples: list, lengths: list[float]) -> Vec | None:
+    """The sweep along a cylindrical patch's `axis` by the longest length, when the samples grow along the
+    axis (one way; most within AXIAL_DEG, none against it). A ruled strip through a few samples of a closed
+    saddle edge leaves the cylinder between them, and its crossing with the main pipe then misses the branch's
+    own surface; the edge swept along the axis stays on the cylinder. The longer sweep at samples nearer their
+    partner is an overshoot the trimming drops."""
     along = sorted(dot(s.outward, axis) for s in samples)
     median, limit = along[len(along) // 2], math.cos(math.radians(AXIAL_DEG))
     # The ends may turn across the axis: where an equal-radius branch touches its main, the saddle's
@@ -159,7 +163,7 @@ def _axial_sweep(face: TopoDS_Face, samples: list, lengths: list[float]) -> Vec 
 PCURVE_SAMPLES = 64
 
 
-def _cylinder_band(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
+def _cylinder_band(face: TopoDS_Face, axis: Vec, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
     """The edge swept along the axis as a face of the patch's own cylinder: the band of the cylinder from the
     edge's lowest to its highest point (in the sweep's direction) and on by the sweep, less the patch face.
     A prism of a saddle edge is a surface of extrusion, which the kernel intersects with another pipe's
@@ -167,7 +171,6 @@ def _cylinder_band(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_
     it cut (salome_pipe). Two true cylinders meet in its analytic case. None when the cut leaves other than
     one face (a patch piece not covering the band above the edge)."""
     surface = BRep_Tool.Surface_s(face)
-    axis = xyz(BRepAdaptor_Surface(face, False).Cylinder().Axis().Direction())
     curve = BRepAdaptor_Curve2d(TopoDS.Edge(edge), face)
     first, last = curve.FirstParameter(), curve.LastParameter()
     uv = [curve.Value(first + (last - first) * k / PCURVE_SAMPLES) for k in range(PCURVE_SAMPLES + 1)]
@@ -177,7 +180,7 @@ def _cylinder_band(face: TopoDS_Face, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_
         return None
     along = dot(sweep, axis)  # v runs along the axis of the cylinder's frame, in length units
     v0, v1 = (min(vs) + min(along, 0.0), max(vs) + max(along, 0.0))
-    band = BRepBuilderAPI_MakeFace(surface, u0, u1, v0, v1, 1e-7)
+    band = BRepBuilderAPI_MakeFace(surface, u0, u1, v0, v1, FACE_TOLERANCE)
     if not band.IsDone():
         return None
     cut = BRepAlgoAPI_Cut(band.Face(), face)

@@ -15,4 +15,5 @@ def measure(face: TopoDS_Face) -> dict[str, Any]:
     face need not), `normal` is the oriented face's normal there."""
     props = surface_props(face)
     point, normal = interior_point(OutwardNormals(face), diagonal(face))
-    return {"area": props.Mass(), "centroid": list(xyz(props.CentreOfMass())), "point": list(point), "normal": list(normal)}
+    centroid = list(xyz(props.CentreOfMass()))
+    return {"area": props.Mass(), "centroid": centroid, "point": list(point), "normal": list(normal)}

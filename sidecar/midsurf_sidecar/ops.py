@@ -67,9 +67,7 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     if ("offset" in args) == ("plane" in args):
         raise BadArgs("make_patch needs exactly one of `offset` (mm) and `plane` ({origin, normal})")
     clip = _clip(args, count, len(face_ids))
-    reverse = args.get("reverse", False)
-    if not isinstance(reverse, bool):
-        raise BadArgs("`reverse` must be true or false")
+    reverse = optional_bool(args, "reverse", False)
     options = mid_patch.Options(clip, reverse, _fill_edges(solid, args))
     if "offset" in args:
         patch, faces, filled = mid_patch.offset_patch(face_map, face_ids, require_number(args, "offset"), options)
@@ -189,9 +187,7 @@ def extend_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         lengths = [as_number(v, "a strip length") for v in require_list(entry, "lengths")]
         if len(lengths) < 2 or min(lengths) <= 0.0:
             raise BadArgs(f"strip {j}: at least 2 lengths, all positive, got {lengths}")
-        onto_face = entry.get("onto_face", False)
-        if not isinstance(onto_face, bool):
-            raise BadArgs(f"strip {j}: `onto_face` must be true or false, got {onto_face!r}")
+        onto_face = optional_bool(entry, "onto_face", False)
         face = TopoDS.Face(face_map.FindKey(face_id + 1))
         # One strip the kernel cannot make is that joint's failure, not the whole request's.
         try:

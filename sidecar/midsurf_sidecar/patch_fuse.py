@@ -118,6 +118,10 @@ def _internal_edge_lines(face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
     return tools
 
 
+# A face spanning its surface's period to within this share closes on itself (UV bounds carry float noise).
+FULL_TURN = 1e-9
+
+
 def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
     """A face closed on itself (a tube's cylinder, a dome's sphere, an elbow's torus) is bounded by its seam
     twice: that edge belongs to one face only, so a mesher or a topology check (the judge) takes it for a free
@@ -132,9 +136,9 @@ def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
             continue  # most faces: no need for the UV bounds
         u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
         isolines = []
-        if surface.IsUPeriodic() and u1 - u0 >= surface.UPeriod() * (1 - 1e-9):
+        if surface.IsUPeriodic() and u1 - u0 >= surface.UPeriod() * (1 - FULL_TURN):
             isolines.append(BRepBuilderAPI_MakeEdge(surface.UIso((u0 + u1) / 2), v0, v1))
-        if surface.IsVPeriodic() and v1 - v0 >= surface.VPeriod() * (1 - 1e-9):
+        if surface.IsVPeriodic() and v1 - v0 >= surface.VPeriod() * (1 - FULL_TURN):
             isolines.append(BRepBuilderAPI_MakeEdge(surface.VIso((v0 + v1) / 2), u0, u1))
         for maker in isolines:
             if maker.IsDone():

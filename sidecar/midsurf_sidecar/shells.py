@@ -68,7 +68,11 @@ def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dic
     splitter = split(kept, tools, fuzzy)
     if splitter is None:
         return unsplit
-    pieces = {i: list(splitter.Modified(faces[0])) or faces for i, faces in unsplit.items()}
+    # Listing an empty Modified() costs as much as a split face's (KERNEL_NOTES): ask its size first.
+    pieces = {}
+    for i, faces in unsplit.items():
+        modified = splitter.Modified(faces[0])
+        pieces[i] = list(modified) if modified.Size() else faces
     # The faces taken must be exactly the splitter's result.
     result = indexed_map(splitter.Shape(), TopAbs_FACE)
     taken = [f for faces in pieces.values() for f in faces]
