@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use serde::Serialize;
 
-use crate::face_graph::{EdgeId, FaceGraph, Surface};
+use crate::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
 use crate::features::{self, Feature, LimitArgs, Limits};
 use crate::pairing::estimate::{estimate_t_max, TMaxEstimate};
 use crate::pairing::{self, FaceRole, Pairing};
@@ -40,17 +40,31 @@ pub struct SolidPairing {
 }
 
 impl SolidPairing {
-    /// Widest uncovered band a clipped mid-patch keeps (see `Tolerances::clip_narrow`): under a crossing wall
-    /// the band also spans the suppressed blends at the wall's root, up to twice the largest fillet radius or
-    /// chamfer width (a chamfer's footprint is no wider than the chamfer).
+    /// Widest uncovered band between covered pieces a clipped mid-patch keeps (see `Tolerances::clip_narrow`):
+    /// under a crossing wall the band also spans the suppressed blends at the wall's root, up to twice the
+    /// largest fillet radius or chamfer width (a chamfer's footprint is no wider than the chamfer).
     pub fn clip_narrow(&self) -> f64 {
-        let fillet = self
-            .features
+        self.tolerances.clip_narrow + 2.0 * self.blend_size(|_| true)
+    }
+
+    /// Widest uncovered piece at a dead end that the mid-patch of `faces` (its reference faces and their
+    /// partners) keeps when clipped: a corner's overshoot spans the blends there, so only blends touching
+    /// those faces count. Blends elsewhere say nothing about this patch: a 5 mm round on a block's corner
+    /// must not keep a slot end's patch lying over the block.
+    pub fn clip_narrow_end(&self, graph: &FaceGraph, faces: &[FaceId]) -> f64 {
+        let touches =
+            |blend: &Feature| blend.faces.iter().any(|&b| graph.neighbours(b).iter().any(|n| faces.contains(n)));
+        self.tolerances.clip_narrow + 2.0 * self.blend_size(touches)
+    }
+
+    /// The largest fillet radius or chamfer width among the suppressed blends `keep` accepts, 0 for none.
+    fn blend_size(&self, keep: impl Fn(&Feature) -> bool) -> f64 {
+        self.features
             .iter()
             .filter(|f| matches!(f.kind, features::FeatureKind::Fillet | features::FeatureKind::Chamfer))
+            .filter(|f| keep(f))
             .map(|f| f.size)
-            .fold(0.0, f64::max);
-        self.tolerances.clip_narrow + 2.0 * fillet
+            .fold(0.0, f64::max)
     }
 
     /// The edges whose loops the mid-patches fill (every suppressed hole's and boss's, and every junction
@@ -245,7 +259,7 @@ mod tests {
     use super::*;
     use crate::face_graph::Convexity;
     use crate::pairing::Side;
-    use crate::synthetic::{cylinder, graph, rect};
+    use crate::synthetic::{cuboid, cylinder, graph, rect};
     use glam::DVec3;
 
     #[test]
@@ -276,5 +290,26 @@ mod tests {
         g.faces[0] = square();
         g.faces[0].loops = loops;
         assert_eq!(junction_loops(&g, &roles), Vec::<EdgeId>::new());
+    }
+
+    #[test]
+    fn a_dead_end_keeps_only_as_much_as_the_blends_touching_its_patch_span() {
+        // A 100 x 100 x 2 plate (faces 4 and 5 pair). Blends set by hand on two faces of it: face 1 (+x) touches
+        // every face but face 0 (-x), face 2 (-y) every face but face 3.
+        let g = cuboid(DVec3::ZERO, DVec3::new(100.0, 100.0, 2.0));
+        let params = PairingParams { t_max: Some(3.0), draft_max_deg: 3.0, limits: LimitArgs::default() };
+        let mut sp = pair_solid(&g, params);
+        let blend = |face: FaceId, size: f64| Feature {
+            kind: features::FeatureKind::Fillet,
+            faces: vec![face],
+            size,
+            fill: vec![],
+        };
+        sp.features = vec![blend(1, 5.0), blend(2, 0.5)];
+        // A band between covered pieces may span any blend of the part, a dead end only the blends beside it.
+        assert_eq!(sp.clip_narrow(), 3.0 + 2.0 * 5.0);
+        assert_eq!(sp.clip_narrow_end(&g, &[0]), 3.0 + 2.0 * 0.5);
+        assert_eq!(sp.clip_narrow_end(&g, &[0, 3]), 3.0 + 2.0 * 5.0);
+        assert_eq!(sp.clip_narrow_end(&g, &[]), 3.0, "no face, no blend beside it");
     }
 }

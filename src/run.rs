@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use crate::error::Error;
 use crate::exit::Exit;
-use crate::face_graph::FaceGraph;
+use crate::face_graph::{FaceGraph, FaceId};
 use crate::geom::inside::SolidMesh;
 use crate::output::Pending;
 use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
@@ -63,11 +63,13 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &fill);
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
+            let near: Vec<FaceId> = plan.faces.iter().chain(plan.partners.iter().flatten()).copied().collect();
+            let narrow_end = sp.clip_narrow_end(&solid.graph, &near);
             let request = Request::MakePatch {
                 handle: solid.handle,
                 faces: plan.faces.clone(),
                 placement: plan.placement.clone(),
-                clip: Some(Clip { partners: plan.partners.clone(), fuzzy: sp.tolerances.fuse, narrow }),
+                clip: Some(Clip { partners: plan.partners.clone(), fuzzy: sp.tolerances.fuse, narrow, narrow_end }),
                 reverse: plan.reverse,
                 fill: plan.fill.clone(),
             };

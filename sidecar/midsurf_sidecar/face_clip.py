@@ -1,23 +1,27 @@
-"""A planar mid-patch face clipped to the footprint of its partner faces.
+"""A planar or cylindrical mid-patch face clipped to the footprint of its partner faces.
 
 The paper offsets the whole larger face of a pair. Where that face reaches past its partners (a plate under a
-wall or a boss, a side wall whose partner stops at the floor), the offset lies over material of another
-thickness, or over a joint that the other patch covers anyway. The part of the face that projects (along the
-patch normal) onto one of its partners is kept; extend-and-stitch grows the clipped edges back to the
-neighbouring patches.
+wall or a boss, a side wall whose partner stops at the floor, a slot's end whose outer wall turns into a block),
+the offset lies over material of another thickness, or over a joint that the other patch covers anyway. The
+part of the face that projects (along the patch normal) onto one of its partners is kept; extend-and-stitch
+grows the clipped edges back to the neighbouring patches.
 """
 
+import math
+
 from OCP.BRepAdaptor import BRepAdaptor_Surface
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_Transform
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon, BRepBuilderAPI_Transform
 from OCP.BRepClass3d import BRepClass3d_SolidClassifier
-from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
+from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism, BRepPrimAPI_MakeRevol
 from OCP.BRepTools import BRepTools
 from OCP.BRepGProp import BRepGProp
-from OCP.GeomAbs import GeomAbs_Plane
+from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
 from OCP.GProp import GProp_GProps
-from OCP.TopAbs import TopAbs_FACE, TopAbs_IN
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN
+from OCP.TopExp import TopExp
+from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
-from OCP.gp import gp_Pnt, gp_Trsf, gp_Vec
+from OCP.gp import gp_Ax1, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
 from .face_normals import OutwardNormals
 from .face_point import interior_point
@@ -29,21 +33,34 @@ from .topology import diagonal, indexed_map, surface_props
 # over its partners, and splitting its edges would only add work for the joints.
 MIN_CLIPPED_SHARE = 0.01
 
+# Two cylinder axes within this angle (radians) are parallel.
+PARALLEL_ANGLE = 1e-6
+
 
 def clip_to_partners(
-    face: TopoDS_Face, partners: list[TopoDS_Face], fuzzy: float, narrow: float
+    face: TopoDS_Face, partners: list[TopoDS_Face], fuzzy: float, narrow: float, narrow_end: float
 ) -> list[TopoDS_Face]:
-    """The pieces of planar `face` over the footprint of `partners`, plus the uncovered pieces no wider than
-    `narrow` (the band under a crossing wall, an overshoot at a corner: trimming and the joints deal with
-    those as before); [face] when nothing worth clipping.
+    """The pieces of `face` over the footprint of `partners`, plus the narrow uncovered pieces; [face] when
+    nothing worth clipping. An uncovered piece between two covered ones lies under something crossing the
+    wall (a wall, a lug) and stays up to `narrow` wide: the patch runs on across the junction. One at a dead
+    end (an overshoot at a corner, a slot's end running into a block) stays up to `narrow_end` wide; past it
+    the piece lies over other material, and the joints grow the clipped edge instead.
 
-    Non-planar faces and partners are left alone (their footprint is not a prism).
+    A planar face with planar partners is clipped by prisms of their outlines swept along its normal; a
+    cylindrical face with coaxial cylindrical partners by the sectors their (u, v) ranges span about the axis.
+    Other faces are left alone.
     """
-    if not partners or not _is_plane(face) or not all(_is_plane(p) for p in partners):
+    if not partners:
         return [face]
-    normal = _plane_normal(face)
     reach = diagonal(face) + max(diagonal(p) for p in partners)
-    prisms = [_prism(p, normal, reach) for p in partners]
+    if _is_plane(face) and all(_is_plane(p) for p in partners):
+        normal = _plane_normal(face)
+        prisms = [_prism(p, normal, reach) for p in partners]
+    elif all(_coaxial(face, p, fuzzy) for p in partners):
+        radius = BRepAdaptor_Surface(face, True).Cylinder().Radius()
+        prisms = [_sector(p, radius, reach) for p in partners]
+    else:
+        return [face]
 
     splitter = split(face, prisms, fuzzy)
     if splitter is None:
@@ -51,11 +68,13 @@ def clip_to_partners(
     # One classifier per prism, loaded once, asked once per piece.
     classifiers = [BRepClass3d_SolidClassifier(prism) for prism in prisms]
     pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
+    faces = [TopoDS.Face(pieces.FindKey(i)) for i in range(1, pieces.Size() + 1)]
+    covered = [any(_inside(c, _point(piece), fuzzy) for c in classifiers) for piece in faces]
+    neighbours = _neighbours(splitter.Shape(), pieces)
     kept = []
-    for i in range(1, pieces.Size() + 1):
-        piece = TopoDS.Face(pieces.FindKey(i))
-        point, _ = interior_point(OutwardNormals(piece), diagonal(piece))
-        if any(_inside(c, point, fuzzy) for c in classifiers) or _width(piece) <= narrow:
+    for i, piece in enumerate(faces):
+        between = sum(1 for j in neighbours[i] if covered[j]) >= 2
+        if covered[i] or _width(piece) <= (narrow if between else narrow_end):
             kept.append(piece)
     area = surface_props(face).Mass()
     kept_area = sum(surface_props(p).Mass() for p in kept)
@@ -67,6 +86,22 @@ def clip_to_partners(
     return [TopoDS.Face(merged.FindKey(i)) for i in range(1, merged.Size() + 1)]
 
 
+def _point(piece: TopoDS_Face):
+    return interior_point(OutwardNormals(piece), diagonal(piece))[0]
+
+
+def _neighbours(shape: TopoDS_Shape, pieces) -> list[set[int]]:
+    """Per piece (0-based, `pieces` order), the other pieces sharing an edge with it."""
+    edge_faces = IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher()
+    TopExp.MapShapesAndAncestors_s(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces)
+    out: list[set[int]] = [set() for _ in range(pieces.Size())]
+    for e in range(1, edge_faces.Size() + 1):
+        owners = [pieces.FindIndex(f) - 1 for f in edge_faces.FindFromIndex(e)]
+        for i in owners:
+            out[i].update(j for j in owners if j != i)
+    return out
+
+
 def _width(face: TopoDS_Face) -> float:
     """Mean width of a face, 2 x area / perimeter: the width of a long band, the radius of a disc."""
     perimeter = GProp_GProps()
@@ -76,6 +111,39 @@ def _width(face: TopoDS_Face) -> float:
 
 def _is_plane(face: TopoDS_Face) -> bool:
     return BRepAdaptor_Surface(face, True).GetType() == GeomAbs_Plane
+
+
+def _coaxial(face: TopoDS_Face, partner: TopoDS_Face, tolerance: float) -> bool:
+    """Both faces lie on cylinders about one axis."""
+    a, b = BRepAdaptor_Surface(face, True), BRepAdaptor_Surface(partner, True)
+    if a.GetType() != GeomAbs_Cylinder or b.GetType() != GeomAbs_Cylinder:
+        return False
+    axis, other = a.Cylinder().Axis(), b.Cylinder().Axis()
+    return axis.IsParallel(other, PARALLEL_ANGLE) and gp_Lin(axis).Distance(other.Location()) <= tolerance
+
+
+def _sector(partner: TopoDS_Face, radius: float, reach: float) -> TopoDS_Shape:
+    """The solid sector about the partner's axis spanning its (u, v) ranges, from half of `radius` (the
+    clipped face's) or the partner's, whichever is less, out to `reach` past the partner: the partner's
+    footprint on the clipped face (exact for a partner bounded by isolines, the usual wall of a bend or a
+    slot's end; a wider outline only keeps more). It stops short of the axis, where a revolved section
+    degenerates and the splitter then misses the sector's sides."""
+    cylinder = BRepAdaptor_Surface(partner, True).Cylinder()
+    frame = cylinder.Position()
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(partner)
+    x, y, z = gp_Vec(frame.XDirection()), gp_Vec(frame.YDirection()), gp_Vec(frame.Direction())
+    start = x.Multiplied(math.cos(u0)).Added(y.Multiplied(math.sin(u0)))
+    origin = gp_Vec(frame.Location().XYZ())
+    inner, outer = 0.5 * min(radius, cylinder.Radius()), cylinder.Radius() + reach
+
+    def corner(r, v):
+        return gp_Pnt(origin.Added(start.Multiplied(r)).Added(z.Multiplied(v)).XYZ())
+
+    outline = BRepBuilderAPI_MakePolygon(corner(inner, v0), corner(outer, v0), corner(outer, v1), corner(inner, v1), True)
+    section = BRepBuilderAPI_MakeFace(outline.Wire(), True).Face()
+    # u grows about X ^ Y, which is the frame's main direction only when the frame is right-handed.
+    turn = gp_Ax1(frame.Location(), gp_Dir(x.Crossed(y)))
+    return BRepPrimAPI_MakeRevol(section, turn, min(u1 - u0, 2.0 * math.pi)).Shape()
 
 
 def _plane_normal(face: TopoDS_Face) -> gp_Vec:

@@ -25,11 +25,12 @@ FaceMaker = Callable[[TopoDS_Face], TopoDS_Face]
 @dataclass(frozen=True)
 class Clip:
     """Partner faces per reference face (same order as the request's faces), the fuzzy tolerance, and the
-    width up to which uncovered pieces stay (see face_clip)."""
+    widths up to which uncovered pieces stay: between covered pieces and at a dead end (see face_clip)."""
 
     partners: list[list[int]]
     fuzzy: float
     narrow: float
+    narrow_end: float
 
 
 @dataclass(frozen=True)
@@ -99,7 +100,7 @@ def _patch(
             new_faces = [make(source)]
             if clip is not None and clip.partners[k]:
                 partners = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.partners[k]]
-                new_faces = clip_to_partners(new_faces[0], partners, clip.fuzzy, clip.narrow)
+                new_faces = clip_to_partners(new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end)
             if options.reverse:
                 new_faces = [TopoDS.Face(f.Reversed()) for f in new_faces]
             described.extend({"source": face_id, **measure(f)} for f in new_faces)

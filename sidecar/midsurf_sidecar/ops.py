@@ -87,17 +87,20 @@ def _fill_edges(solid: TopoDS_Shape, args: dict[str, Any]) -> list[TopoDS_Shape]
 
 
 def _clip(args: dict[str, Any], count: int, faces: int) -> mid_patch.Clip | None:
-    """The optional `clip`: {partners: [[face id]] per requested face, fuzzy, narrow}."""
+    """The optional `clip`: {partners: [[face id]] per requested face, fuzzy, narrow, narrow_end (optional,
+    defaults to narrow)}."""
     if "clip" not in args:
         return None
     clip = require_object(args, "clip")
     partners = require_list(clip, "partners")
     if len(partners) != faces:
         raise BadArgs(f"clip.partners has {len(partners)} lists for {faces} faces: give one list per face")
+    narrow = require_non_negative(clip, "narrow")
     return mid_patch.Clip(
         [index_list(p, count, "partner face", "the solid") for p in partners],
         require_non_negative(clip, "fuzzy"),
-        require_non_negative(clip, "narrow"),
+        narrow,
+        require_non_negative(clip, "narrow_end") if "narrow_end" in clip else narrow,
     )
 
 

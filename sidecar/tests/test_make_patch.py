@@ -338,6 +338,68 @@ def test_clip_keeps_the_footprint_of_the_partners(client, tmp_path):
     assert indexed_map(face, TopAbs_VERTEX).Size() == 4
 
 
+# A channel whose bottom (y = 0, x 0..100) faces 2 mm tops over x 0..40 and 60..100; between them a 20 mm wide
+# block stands 10 mm tall, crossing the channel.
+CROSSED_PROFILE = [(0.0, 0.0), (100.0, 0.0), (100.0, 2.0), (60.0, 2.0), (60.0, 10.0), (40.0, 10.0), (40.0, 2.0), (0.0, 2.0)]
+
+
+def test_clip_keeps_a_narrow_piece_between_covered_ones_and_drops_one_at_a_dead_end(client, tmp_path):
+    from shapes import extrude_polygon
+
+    handle = client.load(extrude_polygon(CROSSED_PROFILE, 30.0), tmp_path)
+    g = graph(client, handle)
+    bottom = face_with(g, "plane", lambda f: f["normal"][1] < -0.99)["id"]
+    tops = [f["id"] for f in g["faces"] if f["normal"][1] > 0.99 and f["centroid"][1] < 3.0]
+    assert len(tops) == 2
+    # The 20 x 30 band under the block (12 wide) lies between the two covered pieces: `narrow` decides.
+    clip = {"partners": [tops], "fuzzy": 1e-6, "narrow": 12.5, "narrow_end": 2.0}
+    ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
+    assert sum(f["area"] for f in ok["faces"]) == pytest.approx(100.0 * 30.0)
+    clip = {"partners": [tops], "fuzzy": 1e-6, "narrow": 11.5, "narrow_end": 20.0}
+    ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
+    assert sum(f["area"] for f in ok["faces"]) == pytest.approx(80.0 * 30.0)
+    # With one partner the band is a dead end next to one covered piece (and the far piece another): it
+    # stays only up to `narrow_end`.
+    clip = {"partners": [[tops[0]]], "fuzzy": 1e-6, "narrow": 100.0, "narrow_end": 2.0}
+    ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
+    assert sum(f["area"] for f in ok["faces"]) == pytest.approx(40.0 * 30.0)
+
+
+def slot_end() -> "TopoDS_Shape":
+    """The end of a slot (radius 1.5 about Z, y >= 0, 10 tall) in a 2 mm half ring, which from 120 degrees on
+    runs into a block (x >= -1.75): the ring's outer face (radius 3.5) spans 120..180 degrees only."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCylinder
+    from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
+    from OCP.gp import gp_Ax2
+
+    axis = gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))
+    ring = BRepPrimAPI_MakeCylinder(axis, 3.5, 10.0, math.pi).Shape()
+    block = BRepPrimAPI_MakeBox(gp_Pnt(-1.75, 0, 0), gp_Pnt(6, 6, 10)).Shape()
+    hole = BRepPrimAPI_MakeCylinder(axis, 1.5, 10.0).Shape()
+    shape = BRepAlgoAPI_Cut(BRepAlgoAPI_Fuse(ring, block).Shape(), hole).Shape()
+    unify = ShapeUpgrade_UnifySameDomain(shape, True, True, False)
+    unify.Build()
+    return unify.Shape()
+
+
+def test_clip_cuts_a_cylinder_to_the_sector_of_its_coaxial_partner(client, tmp_path):
+    handle = client.load(slot_end(), tmp_path)
+    g = graph(client, handle)
+    inner = face_with(g, "cylinder", lambda f: f["surface"]["radius"] < 2)["id"]
+    outer = face_with(g, "cylinder", lambda f: f["surface"]["radius"] > 3)["id"]
+    # At radius 2.5 the partner's 60 degrees cover 2.62 x 10; the 120 degrees over the block (5.24 x 10,
+    # 3.44 wide) are a dead end.
+    clip = {"partners": [[outer]], "fuzzy": 1e-6, "narrow": 10.0, "narrow_end": 2.0}
+    ok = client.ok("make_patch", handle=handle, faces=[inner], offset=-1.0, clip=clip)
+    assert sum(f["area"] for f in ok["faces"]) == pytest.approx(math.pi / 3 * 2.5 * 10.0, rel=1e-6)
+    (face,) = patch_faces(client, ok["handle"])
+    assert BRepAdaptor_Surface(face).GetType() == GeomAbs_Cylinder
+    clip = {"partners": [[outer]], "fuzzy": 1e-6, "narrow": 10.0, "narrow_end": 3.5}
+    ok = client.ok("make_patch", handle=handle, faces=[inner], offset=-1.0, clip=clip)
+    assert sum(f["area"] for f in ok["faces"]) == pytest.approx(math.pi * 2.5 * 10.0, rel=1e-6)
+
+
 def test_clip_needs_one_partner_list_per_face(client, tmp_path):
     handle = client.load(box(40, 40, 5), tmp_path)
     err = client.err("make_patch", handle=handle, faces=[0, 1], offset=-1.0, clip={"partners": [[2]], "fuzzy": 0.0, "narrow": 1.0})

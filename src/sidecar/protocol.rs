@@ -25,13 +25,14 @@ pub enum Placement {
     Plane { origin: [f64; 3], normal: [f64; 3] },
 }
 
-/// Partner faces per requested face (same order), the fuzzy tolerance of the cut, and the width up to which
-/// uncovered pieces stay.
+/// Partner faces per requested face (same order), the fuzzy tolerance of the cut, and the widths up to which
+/// uncovered pieces stay: `narrow` between two covered pieces, `narrow_end` elsewhere.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Clip {
     pub partners: Vec<Vec<usize>>,
     pub fuzzy: f64,
     pub narrow: f64,
+    pub narrow_end: f64,
 }
 
 /// A free edge of a fused shape, seen from its face.
@@ -376,11 +377,11 @@ mod tests {
                     handle: 2,
                     faces: vec![7],
                     placement: Placement::Plane { origin: [50.0, 0.0, 0.0], normal: [1.0, 0.0, 0.0] },
-                    clip: Some(Clip { partners: vec![vec![8, 9]], fuzzy: 0.001, narrow: 3.0 }),
+                    clip: Some(Clip { partners: vec![vec![8, 9]], fuzzy: 0.001, narrow: 3.0, narrow_end: 2.0 }),
                     reverse: true,
                     fill: vec![12, 13],
                 },
-                r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[7],"plane":{"origin":[50.0,0.0,0.0],"normal":[1.0,0.0,0.0]},"clip":{"partners":[[8,9]],"fuzzy":0.001,"narrow":3.0},"reverse":true,"fill":[12,13]}}"#,
+                r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[7],"plane":{"origin":[50.0,0.0,0.0],"normal":[1.0,0.0,0.0]},"clip":{"partners":[[8,9]],"fuzzy":0.001,"narrow":3.0,"narrow_end":2.0},"reverse":true,"fill":[12,13]}}"#,
             ),
             (
                 Request::Fuse { patches: vec![3, 4], fuzzy: 0.001, split_internal: false },
