@@ -112,6 +112,11 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
 /// thickness, the narrow face is a minor level of the wall (a groove's floor, a rebate or a bead along it): the
 /// wall's patch runs on past it. `pairs_of[f]`: the pairs of face f. Returns the narrow face and the rejection.
 /// A narrow strip between two ribs keeps its pair: it lies at the wall's own level.
+///
+/// When neither face pairs with anything else, the partner is the wider and the narrow face runs into the skin
+/// of a wall square to it (the underside of a lip along a plate's end, across from that end face), the pair
+/// measures the lip along its wall: `Rejection::Lip`. A chamfered corner's two bevels meet their walls at 45
+/// degrees and stay a wall; two narrow faces of a short tab are left to `stub_sides`.
 pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same: f64) -> Option<(FaceId, Rejection)> {
     let t = pair.thickness.mean;
     pair.faces.iter().find_map(|&face| {
@@ -123,8 +128,28 @@ pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same
         let wall = pairs_of[partner].iter().find(|q| {
             let other = q.other(partner);
             other != face && (q.thickness.mean - t).abs() > same && graph.face_width(other) >= q.thickness.mean
-        })?;
-        Some((face, Rejection::MinorLevel { width, thickness: t, wall: wall.thickness.mean }))
+        });
+        match wall {
+            Some(wall) => Some((face, Rejection::MinorLevel { width, thickness: t, wall: wall.thickness.mean })),
+            None => {
+                let isolated = pairs_of[face].len() == 1 && pairs_of[partner].len() == 1;
+                let lip = isolated && graph.face_width(partner) >= t && ledge(graph, face, pairs_of);
+                lip.then_some((face, Rejection::Lip { width, thickness: t }))
+            }
+        }
+    })
+}
+
+/// A wall skin and a face square to it within this cosine (about 3 degrees) meet as a ledge on the wall.
+const SQUARE_COS: f64 = 0.05;
+
+/// Planar `face` meets, along a concave edge, a planar skin of a wall (a face with pairs) square to it.
+fn ledge(graph: &FaceGraph, face: FaceId, pairs_of: &[Vec<&Pair>]) -> bool {
+    let normal = graph.faces[face].normal;
+    graph.faces[face].loops.iter().flatten().filter(|&&e| graph.edges[e].convexity == Convexity::Concave).any(|&e| {
+        graph.across(e, face).any(|g| {
+            !pairs_of[g].is_empty() && all_planar(graph, &[g]) && graph.faces[g].normal.dot(normal).abs() < SQUARE_COS
+        })
     })
 }
 

@@ -128,6 +128,12 @@ pub enum Rejection {
         thickness: f64,
         wall: f64,
     },
+    /// A planar face narrower than its distance to a wider partner, neither of them pairing with anything else:
+    /// the material between is a lip or bead along a wall's edge (measured along the wall), not a wall.
+    Lip {
+        width: f64,
+        thickness: f64,
+    },
 }
 
 impl Rejection {
@@ -141,7 +147,7 @@ impl Rejection {
             Rejection::Distance { .. } => 5,
             Rejection::Overlap { .. } => 6,
             Rejection::Spread { .. } => 7,
-            Rejection::Stub { .. } | Rejection::MinorLevel { .. } => 8,
+            Rejection::Stub { .. } | Rejection::MinorLevel { .. } | Rejection::Lip { .. } => 8,
         }
     }
 
@@ -175,6 +181,9 @@ impl Rejection {
                 format!(
                     "a face {width:.4} wide, {thickness:.4} from its partner, on a wall {wall:.4} thick: a minor level"
                 )
+            }
+            Rejection::Lip { width, thickness } => {
+                format!("a face {width:.4} wide, {thickness:.4} from a partner pairing with nothing else: a lip, not a wall")
             }
         }
     }

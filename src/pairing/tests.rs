@@ -458,3 +458,32 @@ fn a_lip_along_a_plate_edge_is_a_stub_whichever_face_is_proud() {
     let edges = [(0, 2, Convexity::Concave, 90.0), (0, 2, Convexity::Convex, 90.0), (1, 2, Convexity::Concave, 90.0)];
     assert_eq!(detect(&graph_with_lengths(faces, &edges), &tol(), &[true; 3]).pairs.len(), 1);
 }
+
+#[test]
+fn a_lip_under_a_plate_end_is_no_wall_a_chamfered_corner_is() {
+    // A plate 2.0 thick between skins 2 and 3, whose end face 0 (2.6 wide, facing +z) caps a 1.0 lip: the lip's
+    // underside 1 (1.0 wide, 1.7 below the end) runs into skin 2 along a concave edge. Faces 0 and 1 pair with
+    // nothing else: the pair measures the lip along the plate (`Lip`). With the plate turned 45 degrees (a
+    // chamfered corner's bevels meet their walls at 45 degrees) the pair stays.
+    for (tilt, lip) in [(0.0_f64, true), (45.0, false)] {
+        let (s, c) = tilt.to_radians().sin_cos();
+        let normal = DVec3::new(-c, 0.0, -s);
+        let down = DVec3::new(-s, 0.0, c) * -50.0;
+        let faces = vec![
+            rect(DVec3::new(-2.8, 0.0, 1.7), DVec3::Y * 90.0, DVec3::X * 2.6, DVec3::Z),
+            rect(DVec3::new(-3.0, 0.0, 0.0), DVec3::X, DVec3::Y * 90.0, -DVec3::Z),
+            rect(DVec3::new(-2.0, 0.0, 0.0), DVec3::Y * 90.0, down, normal),
+            rect(DVec3::new(-2.0, 0.0, 0.0) - normal * 2.0, down, DVec3::Y * 90.0, -normal),
+        ];
+        let edges = [
+            (1, 2, Convexity::Concave, 90.0),
+            (0, 1, Convexity::Convex, 90.0),
+            (0, 3, Convexity::Convex, 90.0),
+            (2, 3, Convexity::Convex, 2.0),
+        ];
+        let pairing = detect(&graph_with_lengths(faces, &edges), &tol(), &[true; 4]);
+        let paired: Vec<[usize; 2]> = pairing.pairs.iter().map(|p| p.faces).collect();
+        let expected = if lip { vec![[2, 3]] } else { vec![[0, 1], [2, 3]] };
+        assert_eq!(paired, expected, "plate at {tilt} degrees");
+    }
+}
