@@ -117,3 +117,56 @@ def test_a_tube_end_grows_along_its_own_cylinder():
     assert surface_props(grown).Mass() == pytest.approx(2 * math.pi * 2.0 * 1.5)
     box_z = [BRepAdaptor_Surface(grown).Value(0.0, v).Z() for v in (BRepAdaptor_Surface(grown).FirstVParameter(), BRepAdaptor_Surface(grown).LastVParameter())]
     assert sorted(box_z) == pytest.approx([-1.5, 0.0])
+
+
+def test_a_saddle_edge_grown_onto_a_face_is_a_band_of_its_own_cylinder():
+    """A branch tube (radius 2 about z) standing on a main tube (radius 5 about x) ends in a saddle edge (z from
+    sqrt(21) to 5; the seam splits it in two halves). Grown onto the main's face by lengths that vary along it,
+    the strip is the band of the branch's own cylinder from the saddle down past its lowest point by the
+    longest length, which meets the main's cylinder analytically; without `onto_face` it is a ruled surface."""
+    import math
+
+    from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
+    from OCP.BRepBndLib import BRepBndLib
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
+    from OCP.Bnd import Bnd_Box
+    from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Line
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
+
+    from midsurf_sidecar.edge_strip import strip
+    from midsurf_sidecar.topology import surface_props
+
+    branch = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2.0, 10.0).Shape()
+    main = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-10, 0, 0), gp_Dir(1, 0, 0)), 5.0, 20.0).Shape()
+    faces = TopExp_Explorer(BRepAlgoAPI_Cut(branch, main).Shape(), TopAbs_FACE)
+    while BRepAdaptor_Surface(TopoDS.Face(faces.Current())).GetType() != GeomAbs_Cylinder:
+        faces.Next()
+    side = TopoDS.Face(faces.Current())
+    saddles = []
+    edges = TopExp_Explorer(side, TopAbs_EDGE)
+    while edges.More():
+        edge = TopoDS.Edge(edges.Current())
+        curve = BRepAdaptor_Curve(edge)
+        if curve.GetType() != GeomAbs_Line and curve.Value(curve.FirstParameter()).Z() < 9.0:
+            saddles.append(edge)
+        edges.Next()
+    assert len(saddles) == 2
+    lengths = [1.0, 1.2, 1.4, 1.2, 1.0]
+    grown = strip(side, saddles[0], lengths, onto_face=True)
+    assert BRepAdaptor_Surface(grown).GetType() == GeomAbs_Cylinder
+    assert BRepCheck_Analyzer(grown).IsValid()
+    box = Bnd_Box()
+    BRepBndLib.Add_s(grown, box)
+    low = math.sqrt(21.0) - max(lengths)
+    assert [box.CornerMin().Z(), box.CornerMax().Z()] == pytest.approx([low, 5.0], abs=1e-5)
+    # Half the branch's circumference, from `low` up to the saddle z = sqrt(25 - y^2), y = 2 sin(a).
+    steps = 2000
+    angles = [math.pi * (k + 0.5) / steps for k in range(steps)]
+    band = sum(2.0 * (math.sqrt(25.0 - (2.0 * math.sin(a)) ** 2) - low) * math.pi / steps for a in angles)
+    assert surface_props(grown).Mass() == pytest.approx(band, rel=1e-4)
+    assert BRepAdaptor_Surface(strip(side, saddles[0], lengths)).GetType() != GeomAbs_Cylinder

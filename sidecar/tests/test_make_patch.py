@@ -340,7 +340,9 @@ def test_clip_keeps_the_footprint_of_the_partners(client, tmp_path):
 
 # A channel whose bottom (y = 0, x 0..100) faces 2 mm tops over x 0..40 and 60..100; between them a 20 mm wide
 # block stands 10 mm tall, crossing the channel.
-CROSSED_PROFILE = [(0.0, 0.0), (100.0, 0.0), (100.0, 2.0), (60.0, 2.0), (60.0, 10.0), (40.0, 10.0), (40.0, 2.0), (0.0, 2.0)]
+CROSSED_PROFILE = [
+    (0.0, 0.0), (100.0, 0.0), (100.0, 2.0), (60.0, 2.0), (60.0, 10.0), (40.0, 10.0), (40.0, 2.0), (0.0, 2.0)
+]
 
 
 def test_clip_keeps_a_narrow_piece_between_covered_ones_and_drops_one_at_a_dead_end(client, tmp_path):
