@@ -44,27 +44,40 @@ impl SolidPairing {
     /// under a crossing wall the band also spans the suppressed blends at the wall's root, up to twice the
     /// largest fillet radius or chamfer width (a chamfer's footprint is no wider than the chamfer).
     pub fn clip_narrow(&self) -> f64 {
-        self.tolerances.clip_narrow + 2.0 * self.blend_size(|_| true)
+        self.tolerances.clip_narrow + 2.0 * self.blend_size()
     }
 
     /// Widest uncovered piece at a dead end that the mid-patch of `faces` (its reference faces and their
     /// partners) keeps when clipped: a corner's overshoot spans the blends there, so only blends touching
-    /// those faces count. Blends elsewhere say nothing about this patch: a 5 mm round on a block's corner
-    /// must not keep a slot end's patch lying over the block.
-    pub fn clip_narrow_end(&self, graph: &FaceGraph, faces: &[FaceId]) -> f64 {
-        let touches =
-            |blend: &Feature| blend.faces.iter().any(|&b| graph.neighbours(b).iter().any(|n| faces.contains(n)));
-        self.tolerances.clip_narrow + 2.0 * self.blend_size(touches)
+    /// those faces count (`beside`: see [`Self::blends_beside`]). Blends elsewhere say nothing about this
+    /// patch: a 5 mm round on a block's corner must not keep a slot end's patch lying over the block.
+    pub fn clip_narrow_end(&self, beside: &[f64], faces: &[FaceId]) -> f64 {
+        self.tolerances.clip_narrow + 2.0 * faces.iter().map(|&f| beside[f]).fold(0.0, f64::max)
     }
 
-    /// The largest fillet radius or chamfer width among the suppressed blends `keep` accepts, 0 for none.
-    fn blend_size(&self, keep: impl Fn(&Feature) -> bool) -> f64 {
+    /// Per face, the largest fillet radius or chamfer width among the suppressed blends next to it (0 for none):
+    /// worked out once per solid for every patch's [`Self::clip_narrow_end`].
+    pub fn blends_beside(&self, graph: &FaceGraph) -> Vec<f64> {
+        let mut beside = vec![0.0_f64; graph.faces.len()];
+        for blend in self.blends() {
+            for &b in &blend.faces {
+                for &e in graph.faces[b].loops.iter().flatten() {
+                    graph.across(e, b).for_each(|n| beside[n] = beside[n].max(blend.size));
+                }
+            }
+        }
+        beside
+    }
+
+    /// The largest fillet radius or chamfer width among the suppressed blends, 0 for none.
+    fn blend_size(&self) -> f64 {
+        self.blends().map(|f| f.size).fold(0.0, f64::max)
+    }
+
+    fn blends(&self) -> impl Iterator<Item = &Feature> {
         self.features
             .iter()
             .filter(|f| matches!(f.kind, features::FeatureKind::Fillet | features::FeatureKind::Chamfer))
-            .filter(|f| keep(f))
-            .map(|f| f.size)
-            .fold(0.0, f64::max)
     }
 
     /// The edges whose loops the mid-patches fill (every suppressed hole's and boss's, and every junction
@@ -308,8 +321,9 @@ mod tests {
         sp.features = vec![blend(1, 5.0), blend(2, 0.5)];
         // A band between covered pieces may span any blend of the part, a dead end only the blends beside it.
         assert_eq!(sp.clip_narrow(), 3.0 + 2.0 * 5.0);
-        assert_eq!(sp.clip_narrow_end(&g, &[0]), 3.0 + 2.0 * 0.5);
-        assert_eq!(sp.clip_narrow_end(&g, &[0, 3]), 3.0 + 2.0 * 5.0);
-        assert_eq!(sp.clip_narrow_end(&g, &[]), 3.0, "no face, no blend beside it");
+        let beside = sp.blends_beside(&g);
+        assert_eq!(sp.clip_narrow_end(&beside, &[0]), 3.0 + 2.0 * 0.5);
+        assert_eq!(sp.clip_narrow_end(&beside, &[0, 3]), 3.0 + 2.0 * 5.0);
+        assert_eq!(sp.clip_narrow_end(&beside, &[]), 3.0, "no face, no blend beside it");
     }
 }

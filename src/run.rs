@@ -59,12 +59,12 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
         warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
-        let (fill, narrow) = (sp.fill_edges(), sp.clip_narrow());
+        let (fill, narrow, beside) = (sp.fill_edges(), sp.clip_narrow(), sp.blends_beside(&solid.graph));
         let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &fill);
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
             let near: Vec<FaceId> = plan.faces.iter().chain(plan.partners.iter().flatten()).copied().collect();
-            let narrow_end = sp.clip_narrow_end(&solid.graph, &near);
+            let narrow_end = sp.clip_narrow_end(&beside, &near);
             let request = Request::MakePatch {
                 handle: solid.handle,
                 faces: plan.faces.clone(),

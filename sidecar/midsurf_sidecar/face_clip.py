@@ -21,7 +21,7 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN
 from OCP.TopExp import TopExp
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
-from OCP.gp import gp_Ax1, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
+from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
 from .face_normals import OutwardNormals
 from .face_point import interior_point
@@ -52,13 +52,18 @@ def clip_to_partners(
     """
     if not partners:
         return [face]
-    reach = diagonal(face) + max(diagonal(p) for p in partners)
-    if _is_plane(face) and all(_is_plane(p) for p in partners):
-        normal = _plane_normal(face)
+    surface = BRepAdaptor_Surface(face, True)
+    if surface.GetType() == GeomAbs_Plane and all(_is_plane(p) for p in partners):
+        reach = diagonal(face) + max(diagonal(p) for p in partners)
+        normal = gp_Vec(surface.Plane().Axis().Direction())
         prisms = [_prism(p, normal, reach) for p in partners]
-    elif all(_coaxial(face, p, fuzzy) for p in partners):
-        radius = BRepAdaptor_Surface(face, True).Cylinder().Radius()
-        prisms = [_sector(p, radius, reach) for p in partners]
+    elif surface.GetType() == GeomAbs_Cylinder:
+        cylinders = [_coaxial(surface.Cylinder(), p, fuzzy) for p in partners]
+        if any(c is None for c in cylinders):
+            return [face]
+        reach = diagonal(face) + max(diagonal(p) for p in partners)
+        radius = surface.Cylinder().Radius()
+        prisms = [_sector(c, p, radius, reach) for c, p in zip(cylinders, partners)]
     else:
         return [face]
 
@@ -70,10 +75,11 @@ def clip_to_partners(
     pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
     faces = [TopoDS.Face(pieces.FindKey(i)) for i in range(1, pieces.Size() + 1)]
     covered = [any(_inside(c, _point(piece), fuzzy) for c in classifiers) for piece in faces]
-    neighbours = _neighbours(splitter.Shape(), pieces)
+    # Which pieces an uncovered one touches matters only when the two widths differ.
+    neighbours = _neighbours(splitter.Shape(), pieces) if narrow != narrow_end and not all(covered) else None
     kept = []
     for i, piece in enumerate(faces):
-        between = sum(1 for j in neighbours[i] if covered[j]) >= 2
+        between = neighbours is not None and sum(1 for j in neighbours[i] if covered[j]) >= 2
         if covered[i] or _width(piece) <= (narrow if between else narrow_end):
             kept.append(piece)
     area = surface_props(face).Mass()
@@ -113,22 +119,23 @@ def _is_plane(face: TopoDS_Face) -> bool:
     return BRepAdaptor_Surface(face, True).GetType() == GeomAbs_Plane
 
 
-def _coaxial(face: TopoDS_Face, partner: TopoDS_Face, tolerance: float) -> bool:
-    """Both faces lie on cylinders about one axis."""
-    a, b = BRepAdaptor_Surface(face, True), BRepAdaptor_Surface(partner, True)
-    if a.GetType() != GeomAbs_Cylinder or b.GetType() != GeomAbs_Cylinder:
-        return False
-    axis, other = a.Cylinder().Axis(), b.Cylinder().Axis()
-    return axis.IsParallel(other, PARALLEL_ANGLE) and gp_Lin(axis).Distance(other.Location()) <= tolerance
+def _coaxial(cylinder: gp_Cylinder, partner: TopoDS_Face, tolerance: float) -> gp_Cylinder | None:
+    """The partner's cylinder when it shares `cylinder`'s axis, else None."""
+    surface = BRepAdaptor_Surface(partner, True)
+    if surface.GetType() != GeomAbs_Cylinder:
+        return None
+    axis, other = cylinder.Axis(), surface.Cylinder().Axis()
+    if axis.IsParallel(other, PARALLEL_ANGLE) and gp_Lin(axis).Distance(other.Location()) <= tolerance:
+        return surface.Cylinder()
+    return None
 
 
-def _sector(partner: TopoDS_Face, radius: float, reach: float) -> TopoDS_Shape:
-    """The solid sector about the partner's axis spanning its (u, v) ranges, from half of `radius` (the
-    clipped face's) or the partner's, whichever is less, out to `reach` past the partner: the partner's
-    footprint on the clipped face (exact for a partner bounded by isolines, the usual wall of a bend or a
-    slot's end; a wider outline only keeps more). It stops short of the axis, where a revolved section
-    degenerates and the splitter then misses the sector's sides."""
-    cylinder = BRepAdaptor_Surface(partner, True).Cylinder()
+def _sector(cylinder: gp_Cylinder, partner: TopoDS_Face, radius: float, reach: float) -> TopoDS_Shape:
+    """The solid sector about the partner's axis (`cylinder`: the partner's surface) spanning its (u, v)
+    ranges, from half of `radius` (the clipped face's) or the partner's, whichever is less, out to `reach` past
+    the partner: the partner's footprint on the clipped face (exact for a partner bounded by isolines, the usual
+    wall of a bend or a slot's end; a wider outline only keeps more). It stops short of the axis, where a
+    revolved section degenerates and the splitter then misses the sector's sides."""
     frame = cylinder.Position()
     u0, u1, v0, v1 = BRepTools.UVBounds_s(partner)
     x, y, z = gp_Vec(frame.XDirection()), gp_Vec(frame.YDirection()), gp_Vec(frame.Direction())
@@ -144,10 +151,6 @@ def _sector(partner: TopoDS_Face, radius: float, reach: float) -> TopoDS_Shape:
     # u grows about X ^ Y, which is the frame's main direction only when the frame is right-handed.
     turn = gp_Ax1(frame.Location(), gp_Dir(x.Crossed(y)))
     return BRepPrimAPI_MakeRevol(section, turn, min(u1 - u0, 2.0 * math.pi)).Shape()
-
-
-def _plane_normal(face: TopoDS_Face) -> gp_Vec:
-    return gp_Vec(BRepAdaptor_Surface(face, True).Plane().Axis().Direction())
 
 
 def _prism(partner: TopoDS_Face, normal: gp_Vec, reach: float) -> TopoDS_Shape:

@@ -120,8 +120,11 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
 pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same: f64) -> Option<(FaceId, Rejection)> {
     let t = pair.thickness.mean;
     pair.faces.iter().find_map(|&face| {
+        if !all_planar(graph, &[face]) {
+            return None;
+        }
         let width = graph.face_width(face);
-        if width >= t || !all_planar(graph, &[face]) {
+        if width >= t {
             return None;
         }
         let partner = pair.other(face);
