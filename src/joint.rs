@@ -201,6 +201,9 @@ const STEP_SPAN_SHARE: f64 = 0.99;
 /// that piece is dropped as an overshoot, and gives a 0.5 mm step a slope of 27 degrees on a 2 mm wall.
 pub const RAMP_RUN: f64 = 0.5;
 
+/// Two bridges on one edge may overlap by this share of the newer one's stretch (they meet end to end).
+const STRETCH_SLACK: f64 = 1e-3;
+
 /// A bridge between two loose edges: the quad and the two edges' indices. The first side of the quad lies on
 /// `owner`, whose patch the quad joins: the thinner edge for a ramp (so the strip of the thicker patch past the
 /// ramp is trimmed as hanging past another patch), else the first edge.
@@ -222,7 +225,7 @@ pub struct StepBridge {
 /// the thinner patch's edge to a line `RAMP_RUN` x its thickness inside the thicker patch (whose strip past that
 /// line trimming drops), when that edge spans the thicker one: a face standing across the wall would give a
 /// crash mesh elements as short as the step, and has no wall thickness of its own (the judge measures it along
-/// the wall). Each edge is bridged once, nearest pairs first, sorted by (owner, other).
+/// the wall). Each stretch of an edge is bridged once, nearest pairs first, sorted by (owner, other).
 pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     let parallel = STEP_PARALLEL_DEG.to_radians().cos();
     let line = |e: &LooseEdge| -> Option<(DVec3, DVec3, f64)> {
@@ -288,12 +291,25 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     }
     let key = |b: &StepBridge| (b.owner.min(b.other), b.owner.max(b.other));
     candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then(key(&x.1).cmp(&key(&y.1))));
-    let mut used = vec![false; edges.len()];
+    // Per edge, the stretches (along its own line) already bridged: a long edge facing several shorter ones
+    // (the levels of a step split by a third) is bridged once per stretch.
+    let mut used: Vec<Vec<(f64, f64)>> = vec![Vec::new(); edges.len()];
     let mut out = Vec::new();
     for (_, bridge) in candidates {
-        if !used[bridge.owner] && !used[bridge.other] {
-            used[bridge.owner] = true;
-            used[bridge.other] = true;
+        let stretch = |k: usize, p: DVec3, q: DVec3| {
+            let (a, u, _) = lines[k].expect("bridged edges are straight");
+            let (s, t) = ((p - a).dot(u), (q - a).dot(u));
+            (s.min(t), s.max(t))
+        };
+        let owner = stretch(bridge.owner, bridge.quad[0], bridge.quad[3]);
+        let other = stretch(bridge.other, bridge.quad[1], bridge.quad[2]);
+        let free = |k: usize, (s, t): (f64, f64)| {
+            let slack = STRETCH_SLACK * (t - s);
+            used[k].iter().all(|&(u0, u1)| t <= u0 + slack || s >= u1 - slack)
+        };
+        if free(bridge.owner, owner) && free(bridge.other, other) {
+            used[bridge.owner].push(owner);
+            used[bridge.other].push(other);
             out.push(bridge);
         }
     }
@@ -459,6 +475,29 @@ mod tests {
         for (q, (x, y, z)) in quad.iter().zip(expected) {
             assert!(q.distance(DVec3::new(x, y, z)) < 1e-9, "{quad:?}");
         }
+    }
+
+    #[test]
+    fn a_long_edge_facing_two_shorter_levels_is_bridged_to_each_along_its_own_stretch() {
+        // A t=3 patch at z=1.5 starting at x=50 along y 0..60; two thinner levels of its wall end there, y 0..30
+        // at z=1 and y 30..60 at z=1.2 (a plate over a floor and over a recess). Before, the long edge went to the
+        // nearer level only and the other's edge stayed open.
+        let edges = [
+            loose(0, 3.0, 50.0, 1.5, (60.0, 0.0), -DVec3::X),
+            loose(1, 2.0, 50.0, 1.0, (0.0, 30.0), DVec3::X),
+            loose(2, 2.6, 50.0, 1.2, (30.0, 60.0), DVec3::X),
+        ];
+        let bridges = step_bridges(&edges);
+        let pairs: Vec<(usize, usize)> = bridges.iter().map(|b| (b.owner.min(b.other), b.owner.max(b.other))).collect();
+        assert_eq!(pairs, vec![(0, 1), (0, 2)]);
+        for (b, (y0, y1)) in bridges.iter().zip([(0.0, 30.0), (30.0, 60.0)]) {
+            let ys: Vec<f64> = b.quad.iter().map(|q| q.y).collect();
+            assert!(ys.iter().all(|&y| y >= y0 - 1e-9 && y <= y1 + 1e-9), "{ys:?} within {y0}..{y1}");
+        }
+        // Overlapping stretches are still bridged once: a third level along y 20..40 finds the long edge taken.
+        let mut crowded = edges.to_vec();
+        crowded.push(loose(3, 2.2, 50.0, 1.1, (20.0, 40.0), DVec3::X));
+        assert_eq!(step_bridges(&crowded).iter().filter(|b| b.owner == 3 || b.other == 3).count(), 0);
     }
 
     #[test]

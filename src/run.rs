@@ -64,12 +64,19 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         warnings.extend(notes.into_iter().map(|note| plan_warning(i + 1, note)));
         for plan in plans {
             let near: Vec<FaceId> = plan.faces.iter().chain(plan.partners.iter().flatten()).copied().collect();
-            let narrow_end = sp.clip_narrow_end(&beside, &near);
+            let (narrow, narrow_end) =
+                if plan.strict { (0.0, 0.0) } else { (narrow, sp.clip_narrow_end(&beside, &near)) };
             let request = Request::MakePatch {
                 handle: solid.handle,
                 faces: plan.faces.clone(),
                 placement: plan.placement.clone(),
-                clip: Some(Clip { partners: plan.partners.clone(), fuzzy: sp.tolerances.fuse, narrow, narrow_end }),
+                clip: Some(Clip {
+                    partners: plan.partners.clone(),
+                    fuzzy: sp.tolerances.fuse,
+                    narrow,
+                    narrow_end,
+                    exclude: plan.exclude.clone(),
+                }),
                 reverse: plan.reverse,
                 fill: plan.fill.clone(),
             };

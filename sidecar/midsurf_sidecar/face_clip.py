@@ -20,7 +20,7 @@ from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN
 from OCP.TopExp import TopExp
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
 from .face_normals import OutwardNormals
@@ -38,25 +38,36 @@ PARALLEL_ANGLE = 1e-6
 
 
 def clip_to_partners(
-    face: TopoDS_Face, partners: list[TopoDS_Face], fuzzy: float, narrow: float, narrow_end: float
+    face: TopoDS_Face,
+    partners: list[TopoDS_Face],
+    fuzzy: float,
+    narrow: float,
+    narrow_end: float,
+    exclude: list[TopoDS_Face] = (),
 ) -> list[TopoDS_Face]:
     """The pieces of `face` over the footprint of `partners`, plus the narrow uncovered pieces; [face] when
-    nothing worth clipping. An uncovered piece between two covered ones lies under something crossing the
+    nothing worth clipping. Pieces over one of `exclude` (the partners of the face's other thickness levels,
+    whose own patches cover them) go whatever their width. An uncovered piece between two covered ones lies under something crossing the
     wall (a wall, a lug) and stays up to `narrow` wide: the patch runs on across the junction. One at a dead
     end (an overshoot at a corner, a slot's end running into a block) stays up to `narrow_end` wide; past it
     the piece lies over other material, and the joints grow the clipped edge instead.
 
     A planar face with planar partners is clipped by prisms of their outlines swept along its normal; a
     cylindrical face with coaxial cylindrical partners by the sectors their (u, v) ranges span about the axis.
-    Other faces are left alone.
+    An excluded face's footprint keeps its holes: a level's partner may sit in a hole of another level's (a
+    recess in a floor). Only planar faces take `exclude`.
     """
     if not partners:
         return [face]
     surface = BRepAdaptor_Surface(face, True)
-    if surface.GetType() == GeomAbs_Plane and all(_is_plane(p) for p in partners):
-        reach = diagonal(face) + max(diagonal(p) for p in partners)
+    excluded = []
+    if surface.GetType() == GeomAbs_Plane and all(_is_plane(p) for p in [*partners, *exclude]):
+        reach = diagonal(face) + max(diagonal(p) for p in [*partners, *exclude])
         normal = gp_Vec(surface.Plane().Axis().Direction())
-        prisms = [_prism(p, normal, reach) for p in partners]
+        prisms = [_prism(BRepTools.OuterWire_s(p), normal, reach) for p in partners]
+        excluded = [_prism(p, normal, reach) for p in exclude]
+    elif exclude:
+        return [face]
     elif surface.GetType() == GeomAbs_Cylinder:
         cylinders = [_coaxial(surface.Cylinder(), p, fuzzy) for p in partners]
         if any(c is None for c in cylinders):
@@ -67,20 +78,23 @@ def clip_to_partners(
     else:
         return [face]
 
-    splitter = split(face, prisms, fuzzy)
+    splitter = split(face, prisms + excluded, fuzzy)
     if splitter is None:
         return [face]
     # One classifier per prism, loaded once, asked once per piece.
     classifiers = [BRepClass3d_SolidClassifier(prism) for prism in prisms]
+    others = [BRepClass3d_SolidClassifier(prism) for prism in excluded]
     pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
     faces = [TopoDS.Face(pieces.FindKey(i)) for i in range(1, pieces.Size() + 1)]
-    covered = [any(_inside(c, _point(piece), fuzzy) for c in classifiers) for piece in faces]
+    points = [_point(piece) for piece in faces]
+    elsewhere = [any(_inside(c, p, fuzzy) for c in others) for p in points]
+    covered = [not e and any(_inside(c, p, fuzzy) for c in classifiers) for p, e in zip(points, elsewhere)]
     # Which pieces an uncovered one touches matters only when the two widths differ.
     neighbours = _neighbours(splitter.Shape(), pieces) if narrow != narrow_end and not all(covered) else None
     kept = []
     for i, piece in enumerate(faces):
         between = neighbours is not None and sum(1 for j in neighbours[i] if covered[j]) >= 2
-        if covered[i] or _width(piece) <= (narrow if between else narrow_end):
+        if covered[i] or (not elsewhere[i] and _width(piece) <= (narrow if between else narrow_end)):
             kept.append(piece)
     area = surface_props(face).Mass()
     kept_area = sum(surface_props(p).Mass() for p in kept)
@@ -153,11 +167,13 @@ def _sector(cylinder: gp_Cylinder, partner: TopoDS_Face, radius: float, reach: f
     return BRepPrimAPI_MakeRevol(section, turn, min(u1 - u0, 2.0 * math.pi)).Shape()
 
 
-def _prism(partner: TopoDS_Face, normal: gp_Vec, reach: float) -> TopoDS_Shape:
-    """The partner within its outer wire swept along the normal from -reach to +reach: its footprint on any
-    parallel plane. Its holes are left out: where a boss or a pocket interrupts the partner, the patch goes on
-    (a hole through the wall is a hole of the reference face too, and stays)."""
-    outline = BRepBuilderAPI_MakeFace(BRepTools.OuterWire_s(partner), True).Face()
+def _prism(outline: TopoDS_Face | TopoDS_Wire, normal: gp_Vec, reach: float) -> TopoDS_Shape:
+    """A planar face, or the face within a wire, swept along the normal from -reach to +reach: its footprint on
+    any parallel plane. A partner is swept within its outer wire, its holes left out: where a boss or a pocket
+    interrupts the partner, the patch goes on (a hole through the wall is a hole of the reference face too, and
+    stays)."""
+    if isinstance(outline, TopoDS_Wire):
+        outline = BRepBuilderAPI_MakeFace(outline, True).Face()
     shift = gp_Trsf()
     shift.SetTranslation(normal.Multiplied(-reach))
     start = BRepBuilderAPI_Transform(outline, shift, True).Shape()

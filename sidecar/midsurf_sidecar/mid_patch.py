@@ -24,13 +24,15 @@ FaceMaker = Callable[[TopoDS_Face], TopoDS_Face]
 
 @dataclass(frozen=True)
 class Clip:
-    """Partner faces per reference face (same order as the request's faces), the fuzzy tolerance, and the
-    widths up to which uncovered pieces stay: between covered pieces and at a dead end (see face_clip)."""
+    """Partner faces per reference face (same order as the request's faces), the fuzzy tolerance, the widths
+    up to which uncovered pieces stay: between covered pieces and at a dead end, and per reference face the
+    faces whose footprint goes to other patches (see face_clip)."""
 
     partners: list[list[int]]
     fuzzy: float
     narrow: float
     narrow_end: float
+    exclude: list[list[int]]
 
 
 @dataclass(frozen=True)
@@ -100,7 +102,10 @@ def _patch(
             new_faces = [make(source)]
             if clip is not None and clip.partners[k]:
                 partners = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.partners[k]]
-                new_faces = clip_to_partners(new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end)
+                exclude = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.exclude[k]]
+                new_faces = clip_to_partners(
+                    new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end, exclude
+                )
             if options.reverse:
                 new_faces = [TopoDS.Face(f.Reversed()) for f in new_faces]
             described.extend({"source": face_id, **measure(f)} for f in new_faces)

@@ -88,7 +88,7 @@ def _fill_edges(solid: TopoDS_Shape, args: dict[str, Any]) -> list[TopoDS_Shape]
 
 def _clip(args: dict[str, Any], count: int, faces: int) -> mid_patch.Clip | None:
     """The optional `clip`: {partners: [[face id]] per requested face, fuzzy, narrow, narrow_end (optional,
-    defaults to narrow)}."""
+    defaults to narrow), exclude (optional: [[face id]] per requested face)}."""
     if "clip" not in args:
         return None
     clip = require_object(args, "clip")
@@ -96,11 +96,15 @@ def _clip(args: dict[str, Any], count: int, faces: int) -> mid_patch.Clip | None
     if len(partners) != faces:
         raise BadArgs(f"clip.partners has {len(partners)} lists for {faces} faces: give one list per face")
     narrow = require_non_negative(clip, "narrow")
+    exclude = require_list(clip, "exclude") if "exclude" in clip else [[] for _ in partners]
+    if len(exclude) != faces:
+        raise BadArgs(f"clip.exclude has {len(exclude)} lists for {faces} faces: give one list per face")
     return mid_patch.Clip(
         [index_list(p, count, "partner face", "the solid") for p in partners],
         require_non_negative(clip, "fuzzy"),
         narrow,
         require_non_negative(clip, "narrow_end") if "narrow_end" in clip else narrow,
+        [index_list(e, count, "excluded face", "the solid") for e in exclude],
     )
 
 

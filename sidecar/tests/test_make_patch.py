@@ -402,10 +402,46 @@ def test_clip_cuts_a_cylinder_to_the_sector_of_its_coaxial_partner(client, tmp_p
     assert sum(f["area"] for f in ok["faces"]) == pytest.approx(math.pi * 2.5 * 10.0, rel=1e-6)
 
 
+def pocketed_plate() -> "TopoDS_Shape":
+    """A 60 x 30 x 2 plate with a 20 x 10 pocket 0.8 deep in its top (floor at z = 1.2, x 20..40, y 10..20)."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox
+
+    plate = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), gp_Pnt(60, 30, 2)).Shape()
+    pocket = BRepPrimAPI_MakeBox(gp_Pnt(20, 10, 1.2), gp_Pnt(40, 20, 3)).Shape()
+    return BRepAlgoAPI_Cut(plate, pocket).Shape()
+
+
+def test_clip_leaves_the_footprint_of_excluded_faces_holes_and_all_to_other_patches(client, tmp_path):
+    handle = client.load(pocketed_plate(), tmp_path)
+    g = graph(client, handle)
+    bottom = face_with(g, "plane", lambda f: f["normal"][2] < -0.99)["id"]
+    top = face_with(g, "plane", lambda f: f["normal"][2] > 0.99 and f["centroid"][2] > 1.9)["id"]
+    floor = face_with(g, "plane", lambda f: f["normal"][2] > 0.99 and f["centroid"][2] < 1.9)["id"]
+
+    def area(partners, exclude=None, narrow=100.0):
+        clip = {"partners": [partners], "fuzzy": 1e-6, "narrow": narrow, "narrow_end": narrow}
+        if exclude is not None:
+            clip["exclude"] = [exclude]
+        ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
+        return sum(f["area"] for f in ok["faces"])
+
+    # The top's outer wire covers the pocket too: alone it clips nothing.
+    assert area([top]) == pytest.approx(60.0 * 30.0)
+    # The 2 mm level without the pocket's footprint, however narrow a piece the clip would keep.
+    assert area([top], [floor]) == pytest.approx(60.0 * 30.0 - 20.0 * 10.0)
+    # The 1.2 mm level: the floor's footprint only. The top is excluded with its hole, so the pocket stays.
+    assert area([floor], [top]) == pytest.approx(20.0 * 10.0)
+    assert area([floor], []) == pytest.approx(60.0 * 30.0), "unexcluded, the ring round the pocket is narrow enough"
+
+
 def test_clip_needs_one_partner_list_per_face(client, tmp_path):
     handle = client.load(box(40, 40, 5), tmp_path)
     err = client.err("make_patch", handle=handle, faces=[0, 1], offset=-1.0, clip={"partners": [[2]], "fuzzy": 0.0, "narrow": 1.0})
     assert err["code"] == "bad_args" and "one list per face" in err["message"]
+    clip = {"partners": [[2], [3]], "fuzzy": 0.0, "narrow": 1.0, "exclude": [[4]]}
+    err = client.err("make_patch", handle=handle, faces=[0, 1], offset=-1.0, clip=clip)
+    assert err["code"] == "bad_args" and "clip.exclude" in err["message"]
 
 
 def test_fill_removes_the_inner_loops_holding_the_given_edges(client, tmp_path):

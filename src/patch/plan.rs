@@ -70,6 +70,13 @@ pub struct PatchPlan {
     /// Per reference face (same order), the faces it pairs with: the patch is clipped to their footprint.
     #[serde(skip)]
     pub partners: Vec<Vec<FaceId>>,
+    /// Per reference face (same order), the partners of its other thickness levels: their footprint goes to
+    /// the patches of those levels.
+    #[serde(skip)]
+    pub exclude: Vec<Vec<FaceId>>,
+    /// The clip keeps only what lies over the partners (a face's minor thickness level; see `shares`).
+    #[serde(skip)]
+    pub strict: bool,
     /// From the patch to the middle of its wall along the patch normal (0 unless placed on a skin).
     #[serde(skip)]
     pub to_mid: f64,
@@ -199,39 +206,64 @@ pub fn plan_patches(
             }
             continue;
         }
-        // Cluster reference faces by their own mean thickness.
-        let mut clusters: Vec<(Thickness, Vec<FaceId>, Vec<Vec<FaceId>>)> = Vec::new();
-        for (face, pairs) in &per_face {
-            let t = combined(pairs);
-            let partners = partners_of(*face, pairs);
-            match clusters.iter_mut().find(|(ct, _, _)| (ct.mean - t.mean).abs() <= SAME_THICKNESS * ct.mean) {
-                Some((ct, faces, others)) => {
-                    *ct = Thickness { mean: ct.mean, min: ct.min.min(t.min), max: ct.max.max(t.max) };
-                    faces.push(*face);
-                    others.push(partners);
+        // Cluster the reference faces' shares by their own mean thickness (a face once per patch).
+        let mut clustered: Vec<PatchPlan> = Vec::new();
+        for share in per_face.iter().flat_map(|(face, pairs)| shares(graph, *face, pairs)) {
+            let t = combined(&share.pairs);
+            let partners = partners_of(share.face, &share.pairs);
+            let same = |p: &&mut PatchPlan| {
+                (p.thickness.mean - t.mean).abs() <= SAME_THICKNESS * p.thickness.mean
+                    && p.strict == share.minor
+                    && !p.faces.contains(&share.face)
+            };
+            match clustered.iter_mut().find(same) {
+                Some(plan) => {
+                    let ct = plan.thickness;
+                    plan.thickness = Thickness { mean: ct.mean, min: ct.min.min(t.min), max: ct.max.max(t.max) };
+                    plan.faces.push(share.face);
+                    plan.partners.push(partners);
+                    plan.exclude.push(share.exclude);
                 }
-                None => clusters.push((t, vec![*face], vec![partners])),
-            }
-        }
-        for (thickness, faces, partners) in clusters {
-            plans.push(
-                PatchPlan {
+                None => clustered.push(PatchPlan {
                     group: group.id,
                     kind: group.kind,
-                    faces,
-                    placement: Placement::Offset(position.offset(thickness.mean, on_top)),
-                    thickness,
-                    partners,
-                    to_mid: position.to_mid(thickness.mean),
+                    faces: vec![share.face],
+                    placement: Placement::Offset(position.offset(t.mean, on_top)),
+                    thickness: t,
+                    partners: vec![partners],
+                    exclude: vec![share.exclude],
+                    strict: share.minor,
+                    to_mid: position.to_mid(t.mean),
                     reverse: !on_top,
                     fill: Vec::new(),
                     fill_loops: 0,
-                }
-                .with_fill(graph, fill),
-            );
+                }),
+            }
         }
+        plans.extend(clustered.into_iter().map(|plan| plan.with_fill(graph, fill)));
     }
     (plans, notes)
+}
+
+/// `pairs` in levels of thickness: sorted by mean thickness, each within `SAME_THICKNESS` of the one before.
+fn levels<'a>(pairs: &[&'a Pair]) -> Vec<Vec<&'a Pair>> {
+    let mut sorted = pairs.to_vec();
+    sorted.sort_by(|a, b| a.thickness.mean.total_cmp(&b.thickness.mean));
+    let mut out: Vec<Vec<&Pair>> = Vec::new();
+    let mut last = f64::NEG_INFINITY;
+    for p in sorted {
+        let t = p.thickness.mean;
+        match out.last_mut() {
+            Some(level) if t - last <= SAME_THICKNESS * t => level.push(p),
+            _ => out.push(vec![p]),
+        }
+        last = t;
+    }
+    out
+}
+
+fn overlap(pairs: &[&Pair]) -> f64 {
+    pairs.iter().map(|p| p.overlap_area).sum()
 }
 
 /// The thickness a face's patch is offset at: the overlap-weighted mean of its pairs when they agree within
@@ -240,24 +272,60 @@ pub fn plan_patches(
 fn combined(pairs: &[&Pair]) -> Thickness {
     let min = pairs.iter().map(|p| p.thickness.min).fold(f64::INFINITY, f64::min);
     let max = pairs.iter().map(|p| p.thickness.max).fold(f64::NEG_INFINITY, f64::max);
-    let mut levels: Vec<(f64, f64)> = Vec::new(); // (sum of t x overlap, overlap)
-    let mut sorted: Vec<&&Pair> = pairs.iter().collect();
-    sorted.sort_by(|a, b| a.thickness.mean.total_cmp(&b.thickness.mean));
-    let mut last = f64::NEG_INFINITY;
-    for p in sorted {
-        let t = p.thickness.mean;
-        match levels.last_mut() {
-            Some(level) if t - last <= SAME_THICKNESS * t => {
-                level.0 += t * p.overlap_area;
-                level.1 += p.overlap_area;
-            }
-            _ => levels.push((t * p.overlap_area, p.overlap_area)),
-        }
-        last = t;
+    let level = levels(pairs)
+        .into_iter()
+        .max_by(|a, b| overlap(a).total_cmp(&overlap(b)))
+        .expect("a reference face belongs to at least one pair");
+    let mean = level.iter().map(|p| p.thickness.mean * p.overlap_area).sum::<f64>() / overlap(&level);
+    Thickness { mean, min, max }
+}
+
+/// A thickness level of a face gets a patch of its own when its pairs hold at least this share of the face's
+/// overlap; smaller levels (a pad, a boss) stay in the patch of the main level.
+const LEVEL_SHARE: f64 = 0.1;
+
+/// What one reference face brings to a patch: the pairs it is offset for, and the faces whose footprint goes
+/// to the patches of its other levels.
+struct Share<'a> {
+    face: FaceId,
+    pairs: Vec<&'a Pair>,
+    exclude: Vec<FaceId>,
+    /// Not the face's level of most overlap: its patch keeps only what lies over its partners.
+    minor: bool,
+}
+
+/// A planar face over planar partners at different thicknesses (a plate over a floor and over a recess in that
+/// floor) gives one share per level of its parallel pairs, each clipped to its own partners and kept off the
+/// others': one offset is mid-way over one level only. Its other pairs (drafts) go with the level of most
+/// overlap, and so do the narrow uncovered pieces the clip keeps (bands under crossing walls): the other levels
+/// keep only what lies over their partners. Any other face gives one share with all its pairs.
+fn shares<'a>(graph: &FaceGraph, face: FaceId, pairs: &[&'a Pair]) -> Vec<Share<'a>> {
+    let planar = |f: FaceId| matches!(graph.faces[f].surface, Surface::Plane { .. });
+    let parallel: Vec<&Pair> =
+        pairs.iter().copied().filter(|p| p.kind == PairKind::Parallel && planar(p.other(face))).collect();
+    let total = overlap(pairs);
+    let levels: Vec<Vec<&Pair>> = levels(&parallel).into_iter().filter(|l| overlap(l) >= LEVEL_SHARE * total).collect();
+    if !planar(face) || levels.len() < 2 {
+        return vec![Share { face, pairs: pairs.to_vec(), exclude: Vec::new(), minor: false }];
     }
-    let (sum, weight) =
-        levels.into_iter().max_by(|a, b| a.1.total_cmp(&b.1)).expect("a reference face belongs to at least one pair");
-    Thickness { mean: sum / weight, min, max }
+    let main = (0..levels.len()).max_by(|&a, &b| overlap(&levels[a]).total_cmp(&overlap(&levels[b])));
+    let in_level = |p: &Pair, l: &[&Pair]| l.iter().any(|q| std::ptr::eq(p, *q));
+    (0..levels.len())
+        .map(|k| {
+            let mine: Vec<&Pair> = if Some(k) == main {
+                pairs
+                    .iter()
+                    .copied()
+                    .filter(|p| (0..levels.len()).all(|j| j == k || !in_level(p, &levels[j])))
+                    .collect()
+            } else {
+                levels[k].clone()
+            };
+            let others: Vec<&Pair> =
+                levels.iter().enumerate().filter(|&(j, _)| j != k).flat_map(|(_, l)| l.iter().copied()).collect();
+            Share { face, pairs: mine, exclude: partners_of(face, &others), minor: Some(k) != main }
+        })
+        .collect()
 }
 
 /// A draft face goes onto the exact bisector plane with its partner of largest overlap (or, on a skin, onto
@@ -294,6 +362,8 @@ fn draft_plan(
         placement: Placement::Plane { origin: origin.to_array(), normal: normal.to_array() },
         thickness,
         partners: vec![partners_of(face, pairs)],
+        exclude: vec![Vec::new()],
+        strict: false,
         to_mid: position.to_mid(thickness.mean),
         reverse: !reference_on_top,
         fill: Vec::new(),
@@ -398,6 +468,36 @@ mod tests {
         let offsets: Vec<(Vec<FaceId>, Placement)> =
             plans.iter().map(|p| (p.faces.clone(), p.placement.clone())).collect();
         assert_eq!(offsets, vec![(vec![1], Placement::Offset(-1.0)), (vec![2], Placement::Offset(-1.5))]);
+    }
+
+    #[test]
+    fn a_face_over_two_levels_gives_a_patch_per_level_each_kept_off_the_other() {
+        // A bottom at z=0 (x 0..40) under a floor at z=2 (x -30..25) and a recess-like top at z=3 (x 25..40); the
+        // floor also lies over a lower bottom at z=-1 (x -35..0), so neither side sits at one thickness and
+        // the bottoms, being larger, are the reference. One offset of the first bottom would be mid-way over
+        // one level only: it gives a patch per level, clipped to that level's partner and off the other's.
+        let faces = vec![
+            synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 40.0, -DVec3::Z),
+            synthetic::rect(DVec3::new(-35.0, 0.0, -1.0), DVec3::Y * 10.0, DVec3::X * 35.0, -DVec3::Z),
+            synthetic::rect(DVec3::new(-30.0, 0.0, 2.0), DVec3::X * 55.0, DVec3::Y * 10.0, DVec3::Z),
+            synthetic::rect(DVec3::new(25.0, 0.0, 3.0), DVec3::X * 15.0, DVec3::Y * 10.0, DVec3::Z),
+        ];
+        let g = synthetic::graph(faces, &[]);
+        let pairing = detect(&g, &Tolerances::new(60.0, 4.0, 0.05), &[true; 4]);
+        let (plans, _) = plan_patches(&g, &pairing, Position::Mid, &[]);
+        let got: Vec<(Vec<FaceId>, Placement, Vec<Vec<FaceId>>, Vec<Vec<FaceId>>, bool)> = plans
+            .iter()
+            .map(|p| (p.faces.clone(), p.placement.clone(), p.partners.clone(), p.exclude.clone(), p.strict))
+            .collect();
+        assert_eq!(
+            got,
+            vec![
+                // The level of most overlap keeps the clip's narrow pieces; the other keeps only its footprint.
+                (vec![0], Placement::Offset(-1.0), vec![vec![2]], vec![vec![3]], false),
+                (vec![0], Placement::Offset(-1.5), vec![vec![3]], vec![vec![2]], true),
+                (vec![1], Placement::Offset(-1.5), vec![vec![2]], vec![vec![]], false),
+            ]
+        );
     }
 
     #[test]

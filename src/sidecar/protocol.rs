@@ -25,14 +25,21 @@ pub enum Placement {
     Plane { origin: [f64; 3], normal: [f64; 3] },
 }
 
-/// Partner faces per requested face (same order), the fuzzy tolerance of the cut, and the widths up to which
-/// uncovered pieces stay: `narrow` between two covered pieces, `narrow_end` elsewhere.
+/// Partner faces per requested face (same order), the fuzzy tolerance of the cut, the widths up to which
+/// uncovered pieces stay: `narrow` between two covered pieces, `narrow_end` elsewhere; and per requested face
+/// the faces whose footprint (holes and all) goes to other patches whatever its width.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Clip {
     pub partners: Vec<Vec<usize>>,
     pub fuzzy: f64,
     pub narrow: f64,
     pub narrow_end: f64,
+    #[serde(skip_serializing_if = "none_excluded")]
+    pub exclude: Vec<Vec<usize>>,
+}
+
+fn none_excluded(exclude: &[Vec<usize>]) -> bool {
+    exclude.iter().all(Vec::is_empty)
 }
 
 /// A free edge of a fused shape, seen from its face.
@@ -377,7 +384,13 @@ mod tests {
                     handle: 2,
                     faces: vec![7],
                     placement: Placement::Plane { origin: [50.0, 0.0, 0.0], normal: [1.0, 0.0, 0.0] },
-                    clip: Some(Clip { partners: vec![vec![8, 9]], fuzzy: 0.001, narrow: 3.0, narrow_end: 2.0 }),
+                    clip: Some(Clip {
+                        partners: vec![vec![8, 9]],
+                        fuzzy: 0.001,
+                        narrow: 3.0,
+                        narrow_end: 2.0,
+                        exclude: vec![vec![]],
+                    }),
                     reverse: true,
                     fill: vec![12, 13],
                 },
