@@ -308,11 +308,13 @@ fn shares<'a>(graph: &FaceGraph, face: FaceId, pairs: &[&'a Pair]) -> Vec<Share<
     if !planar(face) || levels.len() < 2 {
         return vec![Share { face, pairs: pairs.to_vec(), exclude: Vec::new(), minor: false }];
     }
-    let main = (0..levels.len()).max_by(|&a, &b| overlap(&levels[a]).total_cmp(&overlap(&levels[b])));
+    let main = (0..levels.len())
+        .max_by(|&a, &b| overlap(&levels[a]).total_cmp(&overlap(&levels[b])))
+        .expect("two levels at least");
     let in_level = |p: &Pair, l: &[&Pair]| l.iter().any(|q| std::ptr::eq(p, *q));
     (0..levels.len())
         .map(|k| {
-            let mine: Vec<&Pair> = if Some(k) == main {
+            let mine: Vec<&Pair> = if k == main {
                 pairs
                     .iter()
                     .copied()
@@ -323,7 +325,7 @@ fn shares<'a>(graph: &FaceGraph, face: FaceId, pairs: &[&'a Pair]) -> Vec<Share<
             };
             let others: Vec<&Pair> =
                 levels.iter().enumerate().filter(|&(j, _)| j != k).flat_map(|(_, l)| l.iter().copied()).collect();
-            Share { face, pairs: mine, exclude: partners_of(face, &others), minor: Some(k) != main }
+            Share { face, pairs: mine, exclude: partners_of(face, &others), minor: k != main }
         })
         .collect()
 }
