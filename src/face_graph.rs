@@ -71,6 +71,10 @@ impl Surface {
         }
     }
 
+    pub fn is_plane(&self) -> bool {
+        matches!(self, Surface::Plane { .. })
+    }
+
     /// Freeform surfaces carry no analytic parameters: pairing them needs the mesh.
     pub fn is_freeform(&self) -> bool {
         !matches!(

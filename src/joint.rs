@@ -241,6 +241,7 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
         for j in i + 1..edges.len() {
             let (ei, ej) = (&edges[i], &edges[j]);
             if ei.patch == ej.patch
+                || !may_bridge(ei, ej)
                 || ei.normal.dot(ej.normal).abs() < parallel
                 || ei.outward.dot(ej.outward) > -parallel
             {
@@ -320,13 +321,19 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
 /// Two loose edges (open, no partner) bridge anything within reach. Otherwise the bridge is a thickness step:
 /// two levels of one wall, at least one open, each nearer to the other than to the partner its rays found. The
 /// other level of a step is invisible to rays along a patch, which find a farther wall past it; and the thicker
-/// level's edge may read as rim, the thinner level's skin running on past it.
+/// level's edge may read as rim, the thinner level's skin running on past it. For edges that pass `may_bridge`.
 fn bridgeable(a: &LooseEdge, b: &LooseEdge, distance: f64) -> bool {
-    let loose = |e: &LooseEdge| e.open && e.nearest.is_infinite();
-    if loose(a) && loose(b) {
-        return true;
-    }
-    a.wall == b.wall && (a.open || b.open) && distance < a.nearest.min(b.nearest)
+    (loose(a) && loose(b)) || distance < a.nearest.min(b.nearest)
+}
+
+/// What `bridgeable` asks that needs no distance: both edges loose, or levels of one wall with one open. Asked
+/// first, since every free edge of a pass is a candidate and most pairs fail it.
+fn may_bridge(a: &LooseEdge, b: &LooseEdge) -> bool {
+    (loose(a) && loose(b)) || (a.wall == b.wall && (a.open || b.open))
+}
+
+fn loose(e: &LooseEdge) -> bool {
+    e.open && e.nearest.is_infinite()
 }
 
 /// Missing values linearly interpolated between their known neighbours, held constant past the ends.

@@ -61,9 +61,7 @@ impl SolidPairing {
         let mut beside = vec![0.0_f64; graph.faces.len()];
         for blend in self.blends() {
             for &b in &blend.faces {
-                for &e in graph.faces[b].loops.iter().flatten() {
-                    graph.across(e, b).for_each(|n| beside[n] = beside[n].max(blend.size));
-                }
+                graph.neighbours(b).into_iter().for_each(|n| beside[n] = beside[n].max(blend.size));
             }
         }
         beside
@@ -107,7 +105,7 @@ pub fn junction_loops(graph: &FaceGraph, roles: &[FaceRole]) -> Vec<EdgeId> {
     let mut out = Vec::new();
     for face in &graph.faces {
         let FaceRole::Pair { group, .. } = roles[face.id] else { continue };
-        if matches!(face.surface, Surface::Plane { .. }) {
+        if face.surface.is_plane() {
             continue; // a strip along a plane stays on it: the hole's edges are joined from both sides
         }
         let wall = |h: usize| matches!(roles[h], FaceRole::Pair { group: k, .. } if k != group);

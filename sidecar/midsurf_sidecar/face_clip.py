@@ -20,7 +20,7 @@ from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN
 from OCP.TopExp import TopExp
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
 from .face_normals import OutwardNormals
@@ -64,7 +64,7 @@ def clip_to_partners(
     if surface.GetType() == GeomAbs_Plane and all(_is_plane(p) for p in [*partners, *exclude]):
         reach = diagonal(face) + max(diagonal(p) for p in [*partners, *exclude])
         normal = gp_Vec(surface.Plane().Axis().Direction())
-        prisms = [_prism(BRepTools.OuterWire_s(p), normal, reach) for p in partners]
+        prisms = [_prism(_outline(p), normal, reach) for p in partners]
         excluded = [_prism(p, normal, reach) for p in exclude]
     elif exclude:
         return [face]
@@ -91,13 +91,15 @@ def clip_to_partners(
     covered = [not e and any(_inside(c, p, fuzzy) for c in classifiers) for p, e in zip(points, elsewhere)]
     # Which pieces an uncovered one touches matters only when the two widths differ.
     neighbours = _neighbours(splitter.Shape(), pieces) if narrow != narrow_end and not all(covered) else None
+    areas = [surface_props(piece).Mass() for piece in faces]
     kept = []
     for i, piece in enumerate(faces):
         between = neighbours is not None and sum(1 for j in neighbours[i] if covered[j]) >= 2
-        if covered[i] or (not elsewhere[i] and _width(piece) <= (narrow if between else narrow_end)):
-            kept.append(piece)
+        if covered[i] or (not elsewhere[i] and _width(piece, areas[i]) <= (narrow if between else narrow_end)):
+            kept.append(i)
     area = surface_props(face).Mass()
-    kept_area = sum(surface_props(p).Mass() for p in kept)
+    kept_area = sum(areas[i] for i in kept)
+    kept = [faces[i] for i in kept]
     if not kept or kept_area >= (1.0 - MIN_CLIPPED_SHARE) * area:
         return [face]
     merged = indexed_map(unify(kept, fuzzy), TopAbs_FACE) if len(kept) > 1 else None
@@ -122,11 +124,11 @@ def _neighbours(shape: TopoDS_Shape, pieces) -> list[set[int]]:
     return out
 
 
-def _width(face: TopoDS_Face) -> float:
-    """Mean width of a face, 2 x area / perimeter: the width of a long band, the radius of a disc."""
+def _width(face: TopoDS_Face, area: float) -> float:
+    """Mean width of a face of `area`, 2 x area / perimeter: the width of a long band, the radius of a disc."""
     perimeter = GProp_GProps()
     BRepGProp.LinearProperties_s(face, perimeter)
-    return 2.0 * surface_props(face).Mass() / max(perimeter.Mass(), 1e-12)
+    return 2.0 * area / max(perimeter.Mass(), 1e-12)
 
 
 def _is_plane(face: TopoDS_Face) -> bool:
@@ -167,13 +169,14 @@ def _sector(cylinder: gp_Cylinder, partner: TopoDS_Face, radius: float, reach: f
     return BRepPrimAPI_MakeRevol(section, turn, min(u1 - u0, 2.0 * math.pi)).Shape()
 
 
-def _prism(outline: TopoDS_Face | TopoDS_Wire, normal: gp_Vec, reach: float) -> TopoDS_Shape:
-    """A planar face, or the face within a wire, swept along the normal from -reach to +reach: its footprint on
-    any parallel plane. A partner is swept within its outer wire, its holes left out: where a boss or a pocket
-    interrupts the partner, the patch goes on (a hole through the wall is a hole of the reference face too, and
-    stays)."""
-    if isinstance(outline, TopoDS_Wire):
-        outline = BRepBuilderAPI_MakeFace(outline, True).Face()
+def _outline(partner: TopoDS_Face) -> TopoDS_Face:
+    """The partner within its outer wire, its holes left out: where a boss or a pocket interrupts the partner,
+    the patch goes on (a hole through the wall is a hole of the reference face too, and stays)."""
+    return BRepBuilderAPI_MakeFace(BRepTools.OuterWire_s(partner), True).Face()
+
+
+def _prism(outline: TopoDS_Face, normal: gp_Vec, reach: float) -> TopoDS_Shape:
+    """A planar face swept along the normal from -reach to +reach: its footprint on any parallel plane."""
     shift = gp_Trsf()
     shift.SetTranslation(normal.Multiplied(-reach))
     start = BRepBuilderAPI_Transform(outline, shift, True).Shape()

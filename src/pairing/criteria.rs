@@ -120,7 +120,7 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
 pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same: f64) -> Option<(FaceId, Rejection)> {
     let t = pair.thickness.mean;
     pair.faces.iter().find_map(|&face| {
-        if !all_planar(graph, &[face]) {
+        if !graph.faces[face].surface.is_plane() {
             return None;
         }
         let width = graph.face_width(face);
@@ -151,13 +151,15 @@ fn ledge(graph: &FaceGraph, face: FaceId, pairs_of: &[Vec<&Pair>]) -> bool {
     let normal = graph.faces[face].normal;
     graph.faces[face].loops.iter().flatten().filter(|&&e| graph.edges[e].convexity == Convexity::Concave).any(|&e| {
         graph.across(e, face).any(|g| {
-            !pairs_of[g].is_empty() && all_planar(graph, &[g]) && graph.faces[g].normal.dot(normal).abs() < SQUARE_COS
+            !pairs_of[g].is_empty()
+                && graph.faces[g].surface.is_plane()
+                && graph.faces[g].normal.dot(normal).abs() < SQUARE_COS
         })
     })
 }
 
 fn all_planar(graph: &FaceGraph, faces: &[FaceId]) -> bool {
-    faces.iter().all(|&f| matches!(graph.faces[f].surface, Surface::Plane { .. }))
+    faces.iter().all(|&f| graph.faces[f].surface.is_plane())
 }
 
 fn mesh(face: &Face) -> Result<&crate::face_graph::Mesh, Rejection> {

@@ -300,31 +300,33 @@ struct Share<'a> {
 /// overlap, and so do the narrow uncovered pieces the clip keeps (bands under crossing walls): the other levels
 /// keep only what lies over their partners. Any other face gives one share with all its pairs.
 fn shares<'a>(graph: &FaceGraph, face: FaceId, pairs: &[&'a Pair]) -> Vec<Share<'a>> {
-    let planar = |f: FaceId| matches!(graph.faces[f].surface, Surface::Plane { .. });
-    let parallel: Vec<&Pair> =
-        pairs.iter().copied().filter(|p| p.kind == PairKind::Parallel && planar(p.other(face))).collect();
+    let whole = || vec![Share { face, pairs: pairs.to_vec(), exclude: Vec::new(), minor: false }];
+    if !graph.faces[face].surface.is_plane() {
+        return whole();
+    }
+    let parallel: Vec<&Pair> = pairs
+        .iter()
+        .copied()
+        .filter(|p| p.kind == PairKind::Parallel && graph.faces[p.other(face)].surface.is_plane())
+        .collect();
     let total = overlap(pairs);
     let levels: Vec<Vec<&Pair>> = levels(&parallel).into_iter().filter(|l| overlap(l) >= LEVEL_SHARE * total).collect();
-    if !planar(face) || levels.len() < 2 {
-        return vec![Share { face, pairs: pairs.to_vec(), exclude: Vec::new(), minor: false }];
+    if levels.len() < 2 {
+        return whole();
     }
     let main = (0..levels.len())
         .max_by(|&a, &b| overlap(&levels[a]).total_cmp(&overlap(&levels[b])))
         .expect("two levels at least");
-    let in_level = |p: &Pair, l: &[&Pair]| l.iter().any(|q| std::ptr::eq(p, *q));
     (0..levels.len())
         .map(|k| {
+            let others: Vec<&Pair> =
+                levels.iter().enumerate().filter(|&(j, _)| j != k).flat_map(|(_, l)| l.iter().copied()).collect();
+            // The main level takes every pair of the face but the other levels'.
             let mine: Vec<&Pair> = if k == main {
-                pairs
-                    .iter()
-                    .copied()
-                    .filter(|p| (0..levels.len()).all(|j| j == k || !in_level(p, &levels[j])))
-                    .collect()
+                pairs.iter().copied().filter(|p| !others.iter().any(|q| std::ptr::eq(*p, *q))).collect()
             } else {
                 levels[k].clone()
             };
-            let others: Vec<&Pair> =
-                levels.iter().enumerate().filter(|&(j, _)| j != k).flat_map(|(_, l)| l.iter().copied()).collect();
             Share { face, pairs: mine, exclude: partners_of(face, &others), minor: k != main }
         })
         .collect()
