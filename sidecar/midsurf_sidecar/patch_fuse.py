@@ -6,7 +6,7 @@ from typing import Any
 from OCP.BOPAlgo import BOPAlgo_Builder
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Common, BRepAlgoAPI_Splitter
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-from OCP.GeomAbs import GeomAbs_Line
+from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Line
 from OCP.collections import List_TopoDS_Shape
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepTools import BRepTools
@@ -98,8 +98,9 @@ def general_fuse(faces: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
 def _internal_edge_lines(face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
     """A T-joint that stops inside a face (a rib ending part way up a wall) is an INTERNAL edge of that face,
     which STEP cannot carry: the face is split along the edge's line, through to its boundary, so the joint is
-    a boundary edge shared by the pieces and the stem. Straight edges only; the others stay internal.
-    `face_map`: the faces of the fused shape."""
+    a boundary edge shared by the pieces and the stem. An arc (a boss's foot on its floor) is completed to its
+    circle, which cuts a disc out of the face. Other curves stay internal. `face_map`: the faces of the fused
+    shape."""
     tools = []
     for i in range(face_map.Size()):
         face = TopoDS.Face(face_map.FindKey(i + 1))
@@ -110,11 +111,12 @@ def _internal_edge_lines(face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
             if edge.Orientation() != TopAbs_INTERNAL or BRep_Tool.Degenerated_s(edge):
                 continue
             curve = BRepAdaptor_Curve(edge)
-            if curve.GetType() != GeomAbs_Line:
-                continue
-            reach = diagonal(face)
-            first, last = curve.FirstParameter() - reach, curve.LastParameter() + reach
-            tools.extend(_within(BRepBuilderAPI_MakeEdge(curve.Line(), first, last).Edge(), face))
+            if curve.GetType() == GeomAbs_Line:
+                reach = diagonal(face)
+                first, last = curve.FirstParameter() - reach, curve.LastParameter() + reach
+                tools.extend(_within(BRepBuilderAPI_MakeEdge(curve.Line(), first, last).Edge(), face))
+            elif curve.GetType() == GeomAbs_Circle:
+                tools.extend(_within(BRepBuilderAPI_MakeEdge(curve.Circle()).Edge(), face))
     return tools
 
 

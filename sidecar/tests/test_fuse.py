@@ -169,3 +169,29 @@ def test_repeated_patch_is_bad_args(client):
     (patch,) = put_patches(client, horizontal())
     err = client.err("fuse", patches=[patch, patch], fuzzy=1e-4)
     assert err["code"] == "bad_args" and str(patch) in err["message"]
+
+
+def c_shaped_boss(z0: float):
+    """A cylinder r = 5 about x = 30, y = 20, three quarters of a turn, standing on z = z0 up to 10."""
+    import math
+
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.Geom import Geom_CylindricalSurface
+    from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
+
+    surface = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(30, 20, z0), gp_Dir(0, 0, 1)), 5.0)
+    return BRepBuilderAPI_MakeFace(surface, 0.0, 1.5 * math.pi, 0.0, 10.0 - z0, 1e-7).Face()
+
+
+def test_a_boss_foot_arc_inside_a_face_is_a_boundary_edge_after_split_internal(client):
+    # The C-shaped boss's foot ends inside the base: an INTERNAL edge there, which STEP drops (the boss would
+    # be written loose). Completed to its circle, it cuts a disc out of the base and is shared by all three.
+    handles = put_patches(client, horizontal(), c_shaped_boss(1.0))
+    fused = client.ok("fuse", patches=handles, fuzzy=1e-6, split_internal=True)
+    check_consistent(fused)
+    pieces = sorted((f["patch"], round(f["area"], 6)) for f in fused["faces"])
+    disc = round(3.141592653589793 * 25, 6)
+    assert pieces == [(0, disc), (0, round(2400 - disc, 6)), (1, round(1.5 * 3.141592653589793 * 5 * 9, 6))]
+    (foot,) = [e for e in fused["edges"] if len(e["faces"]) == 3]
+    assert foot["length"] == pytest.approx(1.5 * 3.141592653589793 * 5)
+    assert all(p[2] == pytest.approx(1.0) for p in foot["points"])
