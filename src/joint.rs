@@ -87,7 +87,9 @@ pub fn is_open(probe: &EdgeProbe, step: f64, to_mid: f64, contains: impl Fn(DVec
 }
 
 /// Decides one free edge of patch `patch` (`open`: see [`is_open`]). `patch_of[f]` is the patch of fused face f,
-/// `thickness[p]` of patch p.
+/// `thickness[p]` of patch p. `through(k, d)` says whether the way out from sample k stays in the material for
+/// the first `d` (see [`through_material`]): a meeting counts only when the way to its partner's wall does, for
+/// walls join through material, never across a void (a ring's bore) to its far side.
 pub fn decide(
     patch: usize,
     open: bool,
@@ -95,16 +97,23 @@ pub fn decide(
     patch_of: &[usize],
     thickness: &[f64],
     reach: f64,
+    through: impl Fn(usize, f64) -> bool,
 ) -> Verdict {
     if !open {
         return Verdict::Rim;
     }
-    let usable = |h: &&Hit| patch_of[h.face] != patch && h.gap <= reach && h.distance <= reach;
+    // The partner's wall begins half its thickness before its patch.
+    let usable = |k: usize, h: &Hit| {
+        patch_of[h.face] != patch
+            && h.gap <= reach
+            && h.distance <= reach
+            && through(k, h.distance - 0.5 * thickness[patch_of[h.face]])
+    };
     let score = |h: &Hit| h.distance + h.gap;
     // Each sample votes for the patch of its best meeting; ties go to the lowest patch.
     let mut votes: BTreeMap<usize, usize> = BTreeMap::new();
-    for hits in &probe.hits {
-        if let Some(best) = hits.iter().filter(usable).min_by(|a, b| score(a).total_cmp(&score(b))) {
+    for (k, hits) in probe.hits.iter().enumerate() {
+        if let Some(best) = hits.iter().filter(|h| usable(k, h)).min_by(|a, b| score(a).total_cmp(&score(b))) {
             *votes.entry(patch_of[best.face]).or_default() += 1;
         }
     }
@@ -118,11 +127,11 @@ pub fn decide(
     let reached: Vec<Option<f64>> = probe
         .hits
         .iter()
-        .map(|hits| {
+        .enumerate()
+        .map(|(k, hits)| {
             let best = hits
                 .iter()
-                .filter(usable)
-                .filter(|h| patch_of[h.face] == partner)
+                .filter(|h| patch_of[h.face] == partner && usable(k, h))
                 .min_by(|a, b| score(a).total_cmp(&score(b)))?;
             met += 1;
             if best.gap <= overshoot {
@@ -136,6 +145,30 @@ pub fn decide(
     distances.sort_by(f64::total_cmp);
     let distance = distances[distances.len() / 2];
     Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached), distance })
+}
+
+/// Whether points every `step` along the way out from sample `k` of the edge, before `length`, lie in the
+/// material (`contains`), each first moved `to_mid` along the patch normal to the middle of the wall.
+pub fn through_material(
+    probe: &EdgeProbe,
+    k: usize,
+    length: f64,
+    step: f64,
+    to_mid: f64,
+    contains: impl Fn(DVec3) -> bool,
+) -> bool {
+    // An end of the edge often lies on another wall's skin (a rib's end on its base), and a way out along that
+    // skin is neither in nor out: it is tested a step along the edge (at most halfway to the next sample).
+    let points = &probe.points;
+    let n = points.len();
+    let along = match k {
+        0 if n > 1 => points[1] - points[0],
+        _ if k + 1 == n && n > 1 => points[n - 2] - points[n - 1],
+        _ => DVec3::ZERO,
+    };
+    let start = points[k] + along.normalize_or_zero() * step.min(0.5 * along.length());
+    let at = |s: f64| start + probe.outward[k] * s + probe.normals[k] * to_mid;
+    (1..).map(|j| j as f64 * step).take_while(|&s| s < length).all(|s| contains(at(s)))
 }
 
 /// How far past its samples a free edge with no partner must grow to reach the part's boundary, or None when
@@ -377,7 +410,7 @@ mod tests {
         // Material only below z = -0.5 at x >= 1.5: one sample of three.
         let contains = |q: DVec3| q.z < -0.4 && q.x >= 1.5;
         assert!(!is_open(&p, 0.5, 0.0, contains));
-        assert_eq!(decide(1, false, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Rim);
+        assert_eq!(decide(1, false, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true), Verdict::Rim);
         assert!(is_open(&p, 0.5, 0.0, |q: DVec3| q.z < -0.4 && q.x >= 0.5));
     }
 
@@ -398,7 +431,7 @@ mod tests {
     #[test]
     fn a_rib_edge_meeting_the_base_face_is_a_t_joint_with_overshoot() {
         let p = probe(vec![vec![hit(0, 1.0, 0.0)], vec![hit(1, 1.0, 0.0)], vec![hit(1, 1.0, 0.0), hit(3, 2.0, 0.0)]]);
-        let Verdict::Extend(e) = decide(1, true, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
+        let Verdict::Extend(e) = decide(1, true, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true) else { panic!() };
         assert_eq!(e.kind, JointKind::T);
         assert_eq!(e.partner, 0);
         assert_eq!(e.lengths, vec![1.5; 3]);
@@ -407,7 +440,7 @@ mod tests {
     #[test]
     fn meeting_the_support_past_the_boundary_is_an_l_joint() {
         let p = probe(vec![vec![hit(2, 0.5, 0.5)], vec![hit(2, 0.7, 0.5)]]);
-        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
+        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true) else { panic!() };
         assert_eq!(e.kind, JointKind::L);
         assert_eq!(e.partner, 1);
         assert_eq!(e.lengths, vec![0.75, 0.95]);
@@ -416,7 +449,38 @@ mod tests {
     #[test]
     fn own_patch_and_out_of_reach_meetings_do_not_count() {
         let p = probe(vec![vec![hit(1, 0.5, 0.0), hit(3, 3.5, 0.0)], vec![hit(3, 1.0, 4.0)]]);
-        assert_eq!(decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0), Verdict::Unresolved);
+        assert_eq!(decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true), Verdict::Unresolved);
+    }
+
+    #[test]
+    fn a_wall_across_a_void_is_no_partner_and_a_nearer_one_through_material_wins() {
+        // A wall's edge at x = 0 (samples along y) facing +x: a ring's bore (void) over 1 < x < 3, its far
+        // side (patch 2, 1 thick) at x = 4; a nearer wall through material is patch 1 (1 thick) at x = 0.9.
+        let mut p = probe(vec![vec![hit(3, 4.0, 0.0)]; 3]);
+        p.points = (0..3).map(|k| DVec3::new(0.0, k as f64, 0.0)).collect();
+        p.outward = vec![DVec3::X; 3];
+        let solid = |q: DVec3| q.x < 1.0 || q.x > 3.0;
+        let through = |k, length| through_material(&p, k, length, 0.25, 0.0, solid);
+        assert!(!through(1, 4.0 - 0.5), "the way to the far side crosses the bore");
+        assert!(through(1, 0.9), "up to the bore it stays in the material");
+        assert_eq!(decide(0, true, &p, &PATCH_OF, &THICKNESS, 5.0, through), Verdict::Unresolved);
+        p.hits = vec![vec![hit(2, 0.9, 0.0), hit(3, 4.0, 0.0)]; 3];
+        let through = |k, length| through_material(&p, k, length, 0.25, 0.0, solid);
+        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 5.0, through) else { panic!() };
+        assert_eq!(e.partner, 1);
+    }
+
+    #[test]
+    fn an_end_of_the_edge_on_another_skin_is_tested_a_step_along_the_edge() {
+        // A rib's edge standing on a base's top skin z = 0 at its end sample (k = 2 at z = 0): along that skin
+        // the test reads material (boundary points count as inside here), a step up it reads the void.
+        let mut p = probe(vec![Vec::new(); 3]);
+        p.points = (0..3).map(|k| DVec3::new(0.0, 0.0, 2.0 - k as f64)).collect();
+        p.outward = vec![DVec3::X; 3];
+        let solid = |q: DVec3| q.z <= 0.0 || q.x < 0.5;
+        assert!(!through_material(&p, 2, 2.0, 0.25, 0.0, solid));
+        assert!(!through_material(&p, 1, 2.0, 0.25, 0.0, solid));
+        assert!(through_material(&p, 1, 0.5, 0.25, 0.0, solid), "points before the length only");
     }
 
     #[test]
@@ -428,7 +492,7 @@ mod tests {
             vec![hit(2, 3.0, 0.0)],
             vec![],
         ]);
-        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0) else { panic!() };
+        let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true) else { panic!() };
         assert_eq!(e.partner, 1);
         // Sample 2's best meeting is patch 2's support (0.5 + gap 2 = 2.5 > 2.0): patch 1 there too.
         assert_eq!(e.lengths, vec![1.25, 1.75, 2.25, 3.25, 3.25]);

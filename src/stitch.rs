@@ -253,7 +253,12 @@ fn grow(
         let verdict = match pass {
             Pass::Joints => {
                 let open = open(fused, face, p, patches, solids);
-                joint::decide(patch, open, p, &patch_of, &thickness, patches[patch].reach)
+                let info = &patches[patch];
+                let through = |k, length| {
+                    let step = joint::PROBE_STEP * info.thickness;
+                    joint::through_material(p, k, length, step, info.to_mid, |q| solids[info.solid].contains(q))
+                };
+                joint::decide(patch, open, p, &patch_of, &thickness, info.reach, through)
             }
             // Only growth to the rim; an edge that found no partner before is not counted again.
             Pass::Rims => Verdict::Rim,
