@@ -94,12 +94,15 @@ fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64) -> Result<
     Ok(())
 }
 
-/// Two planar faces no wider than they stand apart and joined by a skin of another wall (the top face a
-/// land between two pockets belongs to) are the sides of a stub, not a wall: rejected after every pair is
-/// known. Narrow sides joined only by thickness faces (a short tab's edge faces) stay a wall.
+/// Two planar or cylindrical faces no wider than they stand apart and joined by a skin of another wall (the top
+/// face a land between two pockets belongs to) are the sides of a stub, not a wall: rejected after every pair
+/// is known. A land curving round (a logo's stroke) has cylindrical sides. Narrow sides joined only by
+/// thickness faces (a short tab's edge faces) stay a wall.
 pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Rejection> {
     let width = pair.faces.iter().map(|&f| graph.face_width(f)).fold(0.0, f64::max);
-    if !all_planar(graph, &pair.faces) || width >= pair.thickness.mean {
+    let flat_or_round =
+        pair.faces.iter().all(|&f| matches!(graph.faces[f].surface, Surface::Plane { .. } | Surface::Cylinder { .. }));
+    if !flat_or_round || width >= pair.thickness.mean {
         return None;
     }
     let [a, b] = pair.faces.map(|f| graph.neighbours(f));

@@ -361,6 +361,32 @@ fn the_sides_of_a_land_between_pockets_are_no_wall() {
 }
 
 #[test]
+fn the_round_sides_of_a_curved_land_are_no_wall_either() {
+    // The land of the test above bent round the z axis (a logo's stroke): its sides are coaxial cylinders
+    // r = 10 and 11 over 2 radians, 0.9 tall, 1.0 apart, joined by the land's narrow top.
+    let span = (0.0, 2.0);
+    let mut faces = vec![
+        cylinder(DVec3::Z * 2.0, 10.0, span, 0.9, false),
+        cylinder(DVec3::Z * 2.0, 11.0, span, 0.9, true),
+        rect(DVec3::new(-30.0, -30.0, 0.0), DVec3::Y * 60.0, DVec3::X * 60.0, -DVec3::Z),
+        rect(DVec3::new(0.0, 10.0, 2.9), DVec3::X * 20.0, DVec3::Y * 1.0, DVec3::Z),
+        rect(DVec3::new(-30.0, -30.0, 2.0), DVec3::X * 60.0, DVec3::Y * 60.0, DVec3::Z),
+    ];
+    faces.push(faces[4].clone());
+    let edges = [
+        (0, 3, Convexity::Convex, 20.0),
+        (1, 3, Convexity::Convex, 22.0),
+        (0, 4, Convexity::Concave, 20.0),
+        (1, 5, Convexity::Concave, 22.0),
+    ];
+    let g = graph_with_lengths(faces, &edges);
+    assert!(criteria::test_pair(&g, 0, 1, &tol()).is_ok(), "the sides alone pass the coaxial tests");
+    let pairing = detect(&g, &tol(), &[true; 6]);
+    assert!(pairing.pairs.iter().all(|p| p.faces != [0, 1]), "{:?}", pairing.pairs);
+    assert!(pairing.roles[..2].iter().all(|r| !matches!(r, FaceRole::Pair { .. })), "{:?}", pairing.roles);
+}
+
+#[test]
 fn a_short_tab_joined_only_by_its_edge_faces_stays_a_wall() {
     // The same two sides, joined by a top that pairs with nothing: a tab 1.0 thick and 0.9 wide.
     let mut faces = land_sides();
