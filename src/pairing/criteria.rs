@@ -94,10 +94,17 @@ fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64) -> Result<
     Ok(())
 }
 
+/// Planar faces narrower than this share of the distance between them are slivers, whatever joins them: a shell
+/// element there would be four times thicker than wide (ender3_x_limit: a counterbore's two annular steps,
+/// 0.017 mm wide, had paired 2.9 mm apart, and the patch grew to 15.7 mm2 across the bore, measuring 33 mm).
+/// A short tab (fw13_hinge: sides 0.57 wide, 1.0 apart) is no sliver. Cylinders are left out: a pipe cut into
+/// short bands (salome_pipe) has faces narrower than its wall, each band still a piece of the wall.
+const SLIVER: f64 = 0.25;
+
 /// Two planar or cylindrical faces no wider than they stand apart and joined by a skin of another wall (the top
 /// face a land between two pockets belongs to) are the sides of a stub, not a wall: rejected after every pair
 /// is known. A land curving round (a logo's stroke) has cylindrical sides. Narrow sides joined only by
-/// thickness faces (a short tab's edge faces) stay a wall.
+/// thickness faces (a short tab's edge faces) stay a wall, unless both are slivers (`SLIVER`).
 pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Rejection> {
     let width = pair.faces.iter().map(|&f| graph.face_width(f)).fold(0.0, f64::max);
     let flat_or_round =
@@ -107,7 +114,8 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
     }
     let [a, b] = pair.faces.map(|f| graph.neighbours(f));
     let joined_by_skin = a.iter().any(|f| skins[*f] && b.binary_search(f).is_ok());
-    joined_by_skin.then_some(Rejection::Stub { width, thickness: pair.thickness.mean, top: false })
+    let sliver = all_planar(graph, &pair.faces) && width < SLIVER * pair.thickness.mean;
+    (joined_by_skin || sliver).then_some(Rejection::Stub { width, thickness: pair.thickness.mean, top: false })
 }
 
 /// A planar face narrower than its distance to its partner cannot be a shell of its own. When that partner

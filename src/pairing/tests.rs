@@ -397,6 +397,32 @@ fn a_short_tab_joined_only_by_its_edge_faces_stays_a_wall() {
     assert_eq!(pairing.pairs.iter().map(|p| p.faces).collect::<Vec<_>>(), vec![[0, 1]]);
 }
 
+#[test]
+fn planar_slivers_far_apart_are_no_wall_whatever_joins_them() {
+    // Two strips 20 long facing each other 1.0 apart, each with one concave long side (so no stub top), joined
+    // only by an edge face (no skin): 0.9 wide they are a short tab's sides (a wall), 0.2 wide slivers (a
+    // counterbore's annular steps seen edge on).
+    for (width, wall) in [(0.9, true), (0.2, false)] {
+        let faces = vec![
+            rect(DVec3::new(0.0, 10.0, 2.0), DVec3::Z * width, DVec3::X * 20.0, -DVec3::Y),
+            rect(DVec3::new(0.0, 11.0, 2.0), DVec3::X * 20.0, DVec3::Z * width, DVec3::Y),
+            rect(DVec3::new(0.0, 10.0, 2.0 + width), DVec3::X * 20.0, DVec3::Y * 1.0, DVec3::Z),
+            rect(DVec3::new(0.0, 0.0, -50.0), DVec3::X * 20.0, DVec3::Y * 5.0, DVec3::Z),
+            rect(DVec3::new(0.0, 20.0, -50.0), DVec3::X * 20.0, DVec3::Y * 5.0, DVec3::Z),
+        ];
+        let long = |a, b, c| (a, b, c, 20.0);
+        let edges = [
+            long(0, 2, Convexity::Convex),
+            long(1, 2, Convexity::Convex),
+            long(0, 3, Convexity::Concave),
+            long(1, 4, Convexity::Concave),
+        ];
+        let pairing = detect(&graph_with_lengths(faces, &edges), &tol(), &[true; 5]);
+        let paired: Vec<[usize; 2]> = pairing.pairs.iter().map(|p| p.faces).collect();
+        assert_eq!(paired, if wall { vec![[0, 1]] } else { vec![] }, "width {width}");
+    }
+}
+
 fn is_stub_top(role: &FaceRole) -> bool {
     matches!(
         role,
