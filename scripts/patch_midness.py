@@ -115,7 +115,9 @@ def main(inp, out):
     ok = np.isfinite(up) & np.isfinite(dn)
     asym = np.abs(up - dn) / np.where(ok, up + dn, 1)
     tri = Vo[Fo]
-    area = np.bincount(fo, weights=0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1))
+    tri_cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    tri_area2 = np.linalg.norm(tri_cross, axis=1)
+    area = np.bincount(fo, weights=0.5 * tri_area2)
     names = explorer_names(mid, face_names(out))
     rows = []
     for f in np.unique(fo):
@@ -148,8 +150,7 @@ def main(inp, out):
     # slack (fw13_top_cover: a wall 0.1 degree off met a chamfer 0.005 mm from its samples, which read 2.1 for 1.4).
     face_patch = np.array([patch_of.get(int(f), "") for f in fo])
     face_t = np.array([named_t.get(p, np.nan) for p in face_patch])  # NaN (never equal) for unnamed faces
-    tri_normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    tri_normal /= np.maximum(np.linalg.norm(tri_normal, axis=1), 1e-300)[:, None]
+    tri_normal = tri_cross / np.maximum(tri_area2, 1e-300)[:, None]
     near = np.zeros(len(P), dtype=bool)
     for patch in named_t:
         mine = np.flatnonzero(sample_patch == patch)

@@ -102,18 +102,28 @@ pub fn decide(
     if !open {
         return Verdict::Rim;
     }
-    // The partner's wall begins half its thickness before its patch.
-    let usable = |k: usize, h: &Hit| {
-        patch_of[h.face] != patch
-            && h.gap <= reach
-            && h.distance <= reach
-            && through(k, h.distance - 0.5 * thickness[patch_of[h.face]])
-    };
-    let score = |h: &Hit| h.distance + h.gap;
+    // Per sample, the meetings that count; the partner's wall begins half its thickness before its patch. The
+    // way through the material is tested once per meeting (each test casts rays), after the cheap tests.
+    let usable: Vec<Vec<&Hit>> = probe
+        .hits
+        .iter()
+        .enumerate()
+        .map(|(k, hits)| {
+            hits.iter()
+                .filter(|h| {
+                    patch_of[h.face] != patch
+                        && h.gap <= reach
+                        && h.distance <= reach
+                        && through(k, h.distance - 0.5 * thickness[patch_of[h.face]])
+                })
+                .collect()
+        })
+        .collect();
+    let score = |h: &&Hit| h.distance + h.gap;
     // Each sample votes for the patch of its best meeting; ties go to the lowest patch.
     let mut votes: BTreeMap<usize, usize> = BTreeMap::new();
-    for (k, hits) in probe.hits.iter().enumerate() {
-        if let Some(best) = hits.iter().filter(|h| usable(k, h)).min_by(|a, b| score(a).total_cmp(&score(b))) {
+    for hits in &usable {
+        if let Some(best) = hits.iter().min_by(|a, b| score(a).total_cmp(&score(b))) {
             *votes.entry(patch_of[best.face]).or_default() += 1;
         }
     }
@@ -124,15 +134,11 @@ pub fn decide(
     let mut on_face = 0;
     let mut met = 0;
     let mut distances = Vec::new();
-    let reached: Vec<Option<f64>> = probe
-        .hits
+    let reached: Vec<Option<f64>> = usable
         .iter()
-        .enumerate()
-        .map(|(k, hits)| {
-            let best = hits
-                .iter()
-                .filter(|h| patch_of[h.face] == partner && usable(k, h))
-                .min_by(|a, b| score(a).total_cmp(&score(b)))?;
+        .map(|hits| {
+            let best =
+                hits.iter().filter(|h| patch_of[h.face] == partner).min_by(|a, b| score(a).total_cmp(&score(b)))?;
             met += 1;
             if best.gap <= overshoot {
                 on_face += 1;
