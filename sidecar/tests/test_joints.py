@@ -94,8 +94,8 @@ def test_a_tube_end_grows_along_its_own_cylinder():
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
 
-    from midsurf_sidecar.edge_strip import strip
-    from midsurf_sidecar.topology import surface_props
+    from midsurf_sidecar.joints.edge_strip import strip
+    from midsurf_sidecar.geom.topology import surface_props
 
     solid = BRepPrimAPI_MakeCylinder(2.0, 5.0).Shape()
     explorer = TopExp_Explorer(solid, TopAbs_FACE)
@@ -138,8 +138,8 @@ def test_a_saddle_edge_grown_onto_a_face_is_a_band_of_its_own_cylinder():
     from OCP.TopoDS import TopoDS
     from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
 
-    from midsurf_sidecar.edge_strip import strip
-    from midsurf_sidecar.topology import surface_props
+    from midsurf_sidecar.joints.edge_strip import strip
+    from midsurf_sidecar.geom.topology import surface_props
 
     branch = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2.0, 10.0).Shape()
     main = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-10, 0, 0), gp_Dir(1, 0, 0)), 5.0, 20.0).Shape()

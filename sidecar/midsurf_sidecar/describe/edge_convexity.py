@@ -7,8 +7,8 @@ from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.TopoDS import TopoDS_Edge
 
-from .face_normals import OutwardNormals
-from .vectors import cross, dot, norm, scale, xyz
+from ..geom.face_normals import OutwardNormals
+from ..geom.vectors import cross, dot, norm, scale, xyz
 
 # Faces meeting at less than this are tangent (a fillet running into a wall): "smooth".
 SMOOTH_ANGLE = math.radians(1.0)

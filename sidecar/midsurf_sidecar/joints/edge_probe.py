@@ -24,9 +24,9 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_IN, TopAbs_OUT, TopAbs_REVERSED
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
-from .errors import BadArgs, KernelError
-from .topology import diagonal
-from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
+from ..geom.topology import diagonal
+from ..geom.vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
+from ..protocol.errors import BadArgs, KernelError
 
 
 @dataclass(frozen=True)

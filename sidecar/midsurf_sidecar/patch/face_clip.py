@@ -23,11 +23,10 @@ from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopToo
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
-from .face_normals import OutwardNormals
-from .face_point import interior_point
-from .patch_fuse import split
-from .patch_unify import unify
-from .topology import diagonal, indexed_map, surface_props
+from ..geom.booleans import split, unify
+from ..geom.face_normals import OutwardNormals
+from ..geom.face_point import interior_point
+from ..geom.topology import diagonal, indexed_map, surface_props
 
 # The clip is kept only when it removes more than this share of the face: below it the face already lies
 # over its partners, and splitting its edges would only add work for the joints.

@@ -24,12 +24,12 @@ from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
+from ..geom.face_normals import OutwardNormals
+from ..geom.face_point import interior_point
+from ..geom.topology import diagonal, indexed_map
+from ..geom.vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
+from ..protocol.errors import KernelError
 from .edge_probe import sample_edge
-from .errors import KernelError
-from .face_normals import OutwardNormals
-from .face_point import interior_point
-from .topology import diagonal, indexed_map
-from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 
 # Outward directions (unit vectors) and lengths equal to this (relative) share are one sweep.
 PARALLEL = 1e-6

@@ -20,11 +20,11 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_VERTEX
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
-from .errors import OpError
-from .face_normals import OutwardNormals
-from .face_point import interior_point
-from .topology import diagonal, face_wires, indexed_map
-from .vectors import Vec, add_scaled, dot, norm, scale, sub, xyz
+from ..geom.face_normals import OutwardNormals
+from ..geom.face_point import interior_point
+from ..geom.topology import diagonal, face_wires, indexed_map
+from ..geom.vectors import Vec, add_scaled, dot, norm, scale, sub, xyz
+from ..protocol.errors import OpError
 
 # |cos| between the source face's normal and the plane normal below which the face is edge-on to the
 # plane: its projection would be a sliver.

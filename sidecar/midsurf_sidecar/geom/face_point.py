@@ -15,7 +15,7 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
-from .errors import KernelError
+from ..protocol.errors import KernelError
 from .face_normals import OutwardNormals
 from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 

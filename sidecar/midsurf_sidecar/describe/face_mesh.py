@@ -9,8 +9,8 @@ from OCP.BRepTools import BRepTools
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
 
-from .errors import BadArgs, KernelError
-from .topology import diagonal
+from ..geom.topology import diagonal
+from ..protocol.errors import BadArgs, KernelError
 
 ANGULAR_DEFLECTION = 0.5
 # Finest tolerance accepted, relative to the part's size. Beyond it the mesh of a large curved face
