@@ -11,7 +11,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 
 from .describe import face_graph
 from .fuse import patch_fuse
-from .geom.booleans import unify
+from .geom import booleans
 from .geom.topology import indexed_map, surface_props, volume
 from .joints import edge_probe, edge_strip
 from .load import step_reader
@@ -239,7 +239,7 @@ def gather(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         raise BadArgs("gather needs at least one face")
     unify = args.get("unify")
     if unify is not None and len(faces) > 1:
-        shape = unify(faces, as_number(unify, "the unify tolerance"))
+        shape = booleans.unify(faces, as_number(unify, "the unify tolerance"))
     else:
         builder, shape = BRep_Builder(), TopoDS_Compound()
         builder.MakeCompound(shape)

@@ -53,6 +53,21 @@ def test_rib_edge_reaches_base_then_strip_shares_the_t_edge(client):
     assert len(t_edges) == 1 and t_edges[0]["length"] == pytest.approx(40.0)
 
 
+def test_gather_unify_merges_a_strip_into_its_patch(client):
+    """With `unify`, the rib's face and the strip grown in its plane become one face (as the stitching gathers a
+    patch's pieces); without it they stay two."""
+    fused = fuse(client, put_patches(client, horizontal(), rib(2.0)))
+    edge, face = free_edge_of(fused, 1, 2.0)
+    strips = client.ok("extend_edges", handle=fused["handle"], strips=[{"edge": edge, "face": face, "lengths": [1.25] * 5}])
+    rib_faces = [i for i, f in enumerate(fused["faces"]) if f["patch"] == 1]
+    parts = [{"handle": fused["handle"], "faces": rib_faces}, {"handle": strips["handle"], "faces": [0]}]
+    assert client.ok("gather", parts=parts)["faces"] == 2
+    merged = client.ok("gather", parts=parts, unify=1e-4)
+    assert merged["faces"] == 1
+    (merged_face,) = fuse(client, [merged["handle"]])["faces"]
+    assert merged_face["area"] == pytest.approx(38 * 40 + 1.25 * 40)
+
+
 def test_outward_points_away_from_the_face_whatever_the_edge_orientation(client):
     fused = fuse(client, put_patches(client, horizontal(), rib(2.0)))
     # Each free edge of the base (x = 0, x = 60, y = 0, y = 40) points out of the rectangle.
