@@ -1,6 +1,7 @@
 """The OCCT side of midsurf: answers NDJSON requests from the Rust binary (see ../PROTOCOL.md).
 
 Layout, in the order a run uses it (each layer imports only the ones above it):
+- `constants.py`: every tolerance, step and sample count the sidecar chooses itself, each with its reason.
 - `protocol/`: args, errors, handle store; no OCP, so the server can answer `ocp_missing`.
 - `geom/`: helpers shared by the stages (vectors, sub-shape maps, normals, interior points, booleans).
 - the stages: `load/` (load_step), `describe/` (describe), `patch/` (make_patch), `fuse/` (fuse),

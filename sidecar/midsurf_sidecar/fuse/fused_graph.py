@@ -10,13 +10,11 @@ from OCP.TopAbs import TopAbs_EDGE
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Shape
 
+from ..constants import EDGE_POINTS
 from ..geom.face_measure import measure
 from ..geom.topology import IndexedShapeMap, indexed_map
 from ..geom.vectors import xyz
 from ..protocol.errors import KernelError, one_line
-
-# Points reported along each edge, evenly spaced by parameter, both ends included.
-EDGE_POINTS = 5
 
 
 def describe(fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int]) -> dict[str, Any]:

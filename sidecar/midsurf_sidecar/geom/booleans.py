@@ -10,12 +10,9 @@ from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE
 from OCP.TopoDS import TopoDS_Shape
 
+from ..constants import CONFUSION, SAME_DOMAIN_ANGLE
 from ..protocol.errors import KernelError, one_line
 from .topology import indexed_map
-
-# Angular tolerance of the same-domain test: OCCT's default (1e-12) misses faces that are coplanar to
-# round-off (KERNEL_NOTES, "Extending").
-SAME_DOMAIN_ANGLE = 1e-6
 
 
 def split(shape: TopoDS_Shape, tools: list[TopoDS_Shape], fuzzy: float) -> BRepAlgoAPI_Splitter | None:
@@ -64,7 +61,7 @@ def unify(faces: list[TopoDS_Shape], fuzzy: float) -> TopoDS_Shape:
     where they touch and merged where they lie on one surface, so a strip is not left as a sliver face of its
     own."""
     merger = ShapeUpgrade_UnifySameDomain(general_fuse(faces, fuzzy).Shape(), True, True, False)
-    merger.SetLinearTolerance(max(fuzzy, 1e-7))
+    merger.SetLinearTolerance(max(fuzzy, CONFUSION))
     merger.SetAngularTolerance(SAME_DOMAIN_ANGLE)
     merger.Build()
     return merger.Shape()

@@ -10,6 +10,7 @@ from OCP.BRepTools import BRepTools
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_VERTEX
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape, TopoDS_Shell
 
+from ..constants import FULL_TURN
 from ..geom.booleans import split, within
 from ..geom.topology import IndexedShapeMap, indexed_map
 from ..protocol.errors import KernelError
@@ -81,10 +82,6 @@ def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dic
     if len(taken) != result.Size() or any(result.FindIndex(f) == 0 for f in taken):
         return unsplit
     return pieces
-
-
-# A face spanning its surface's period to within this share closes on itself (UV bounds carry float noise).
-FULL_TURN = 1e-9
 
 
 def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:

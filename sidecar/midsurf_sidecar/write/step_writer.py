@@ -25,10 +25,9 @@ from OCP.TopoDS import TopoDS_Shape
 from OCP.XCAFApp import XCAFApp_Application
 from OCP.XCAFDoc import XCAFDoc_ColorSurf, XCAFDoc_DocumentTool
 
+from ..constants import FIXED_TIME_STAMP, GLTF_INPUT_LENGTH_UNIT, PREVIEW_ANGULAR_DEFLECTION, PREVIEW_MIN_DEFLECTION, PREVIEW_RELATIVE_DEFLECTION
 from ..geom.topology import indexed_map
 from ..protocol.errors import BadArgs, OpError
-
-FIXED_TIME_STAMP = "1970-01-01T00:00:00"
 
 
 @dataclass(frozen=True)
@@ -62,7 +61,6 @@ def write_step(path: str, shape: TopoDS_Shape, faces: list[FaceAttributes], prev
     writer.SetMetadataMode(True)
     if not writer.Transfer(doc, STEPControl_AsIs):
         raise OpError(f"STEPCAFControl_Writer could not transfer the shape for {path}", "write_failed")
-    # The header's FILE_NAME carries the time of writing: fixed, so equal requests give equal bytes.
     APIHeaderSection_MakeHeader(writer.ChangeWriter().Model()).SetTimeStamp(
         TCollection_HAsciiString(FIXED_TIME_STAMP)
     )
@@ -80,12 +78,12 @@ def _write_glb(path: str, doc: TDocStd_Document, shape: TopoDS_Shape) -> None:
     box = Bnd_Box()
     BRepBndLib.Add_s(shape, box)
     diagonal = 1.0 if box.IsVoid() else box.CornerMin().Distance(box.CornerMax())
-    # A chordal deflection of 1/1000 of the part's size: smooth enough to look at, small enough to open.
-    BRepMesh_IncrementalMesh(shape, max(diagonal * 1e-3, 1e-4), False, 0.3, False)
+    deflection = max(diagonal * PREVIEW_RELATIVE_DEFLECTION, PREVIEW_MIN_DEFLECTION)
+    BRepMesh_IncrementalMesh(shape, deflection, False, PREVIEW_ANGULAR_DEFLECTION, False)
     writer = RWGltf_CafWriter(TCollection_AsciiString(path), True)
     # glTF is Y-up in metres; STEP here is Z-up in millimetres.
     converter = writer.ChangeCoordinateSystemConverter()
-    converter.SetInputLengthUnit(0.001)
+    converter.SetInputLengthUnit(GLTF_INPUT_LENGTH_UNIT)
     converter.SetInputCoordinateSystem(RWMesh_CoordinateSystem_Zup)
     if not writer.Perform(doc, FileInfo(), Message_ProgressRange()):
         raise OpError(f"the glTF writer could not write {path}", "write_failed")
