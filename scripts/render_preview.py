@@ -2,7 +2,7 @@
 """Renders a midsurf preview (`--preview P.glb`) to a PNG, optionally over the edges of the input part, for the
 documentation: no viewer or GPU needed, only numpy and Pillow from the pinned venv (and OCP for the outline).
 
-    .venv/bin/python scripts/render_preview.py out/part.glb --outline part.step -o docs/part.png
+    .venv/bin/python scripts/render_preview.py out/part.glb --outline part.step -o out/part.png
 
 The mid-surface is drawn with flat shading in its faces' colours (the thickness bands of the STEP), back to front
 (painter's algorithm, fine for an open surface seen from one side), the part's edges as thin grey lines on top.
@@ -70,8 +70,11 @@ def outline_edges(step_path: str) -> list[np.ndarray]:
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
 
+    from OCP.IFSelect import IFSelect_RetDone
+
     reader = STEPControl_Reader()
-    reader.ReadFile(step_path)
+    if reader.ReadFile(step_path) != IFSelect_RetDone:
+        sys.exit(f"render_preview: error: {step_path}: not a readable STEP file")
     reader.TransferRoots()
     explorer = TopExp_Explorer(reader.OneShape(), TopAbs_EDGE)
     lines = []
@@ -138,8 +141,11 @@ def main() -> int:
     parser.add_argument("--elevation", type=float, default=35.0, help="degrees above the horizon (default 35)")
     args = parser.parse_args()
     size = tuple(int(v) for v in args.size.split("x"))
-    lines = outline_edges(args.outline) if args.outline else []
-    render(read_glb(args.glb), lines, size, args.azimuth, args.elevation).save(args.output, optimize=True)
+    try:
+        lines = outline_edges(args.outline) if args.outline else []
+        render(read_glb(args.glb), lines, size, args.azimuth, args.elevation).save(args.output, optimize=True)
+    except OSError as exc:
+        sys.exit(f"render_preview: error: {exc.filename}: {exc.strerror}")
     return 0
 
 
