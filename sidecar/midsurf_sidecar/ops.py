@@ -9,8 +9,14 @@ from OCP.BRep import BRep_Builder
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 
-from . import edge_probe, edge_strip, face_graph, mid_patch, patch_fuse, patch_unify, shells, step_io
-from .args import (
+from .describe import face_graph
+from .fuse import patch_fuse
+from .geom import booleans
+from .geom.topology import indexed_map, surface_props, volume
+from .joints import edge_probe, edge_strip
+from .load import step_reader
+from .patch import mid_patch
+from .protocol.args import (
     as_number,
     as_point,
     handle_list,
@@ -27,9 +33,9 @@ from .args import (
     require_positive,
     require_str,
 )
-from .errors import BadArgs, one_line
-from .handles import HandleStore
-from .topology import indexed_map, surface_props, volume
+from .protocol.errors import BadArgs, one_line
+from .protocol.handles import HandleStore
+from .write import shells, step_writer
 
 Op = Callable[[HandleStore, dict[str, Any]], dict[str, Any]]
 
@@ -44,7 +50,7 @@ def ping(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
 
 
 def load_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
-    solids = step_io.load_step(require_str(args, "path"))
+    solids = step_reader.load_step(require_str(args, "path"))
     measured = [(s, indexed_map(s, TopAbs_FACE).Size(), volume(s), surface_props(s).Mass()) for s in solids]
     # Handles only once everything is measured, so a failure leaves no orphan handles behind.
     solids_json = [{"handle": store.put(s), "faces": n, "volume": v, "area": a} for s, n, v, a in measured]
@@ -141,10 +147,10 @@ def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     preview = args.get("preview")
     if preview is not None and not isinstance(preview, str):
         raise BadArgs(f"`preview` must be a path string, got {preview!r}")
-    return {"path": path, "bytes": step_io.write_step(path, shape, faces, preview)}
+    return {"path": path, "bytes": step_writer.write_step(path, shape, faces, preview)}
 
 
-def _face_attributes(entry: Any) -> step_io.FaceAttributes:
+def _face_attributes(entry: Any) -> step_writer.FaceAttributes:
     if not isinstance(entry, dict):
         raise BadArgs(f"each of `faces` must be an object, got {entry!r}")
     name = entry.get("name")
@@ -160,7 +166,7 @@ def _face_attributes(entry: Any) -> step_io.FaceAttributes:
     thickness = entry.get("thickness")
     if thickness is not None:
         thickness = as_number(thickness, "face thickness")
-    return step_io.FaceAttributes(require_int(entry, "face"), name, color, thickness)
+    return step_writer.FaceAttributes(require_int(entry, "face"), name, color, thickness)
 
 
 def probe_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
@@ -233,7 +239,7 @@ def gather(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         raise BadArgs("gather needs at least one face")
     unify = args.get("unify")
     if unify is not None and len(faces) > 1:
-        shape = patch_unify.unify(faces, as_number(unify, "the unify tolerance"))
+        shape = booleans.unify(faces, as_number(unify, "the unify tolerance"))
     else:
         builder, shape = BRep_Builder(), TopoDS_Compound()
         builder.MakeCompound(shape)

@@ -9,9 +9,9 @@ import sys
 import traceback
 from typing import Any, BinaryIO, TextIO
 
-from .args import require_int
-from .errors import BadArgs, OpError, one_line
-from .handles import HandleStore
+from .protocol.args import require_int
+from .protocol.errors import BadArgs, OpError, one_line
+from .protocol.handles import HandleStore
 
 PROTOCOL_VERSION = 2
 

@@ -14,7 +14,7 @@ from OCP.gp import gp_Pnt
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN, TopAbs_OUT
 from OCP.TopoDS import TopoDS
 
-from midsurf_sidecar.topology import indexed_map
+from midsurf_sidecar.geom.topology import indexed_map
 from shapes import (
     BEND_CENTRE,
     BEND_INNER,

@@ -7,7 +7,7 @@ import pytest
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_FACE
 
-from midsurf_sidecar.topology import indexed_map
+from midsurf_sidecar.geom.topology import indexed_map
 from patch_shapes import horizontal, put_patches, rectangle, vertical
 from shapes import bent_sheet
 

@@ -53,6 +53,21 @@ def test_rib_edge_reaches_base_then_strip_shares_the_t_edge(client):
     assert len(t_edges) == 1 and t_edges[0]["length"] == pytest.approx(40.0)
 
 
+def test_gather_unify_merges_a_strip_into_its_patch(client):
+    """With `unify`, the rib's face and the strip grown in its plane become one face (as the stitching gathers a
+    patch's pieces); without it they stay two."""
+    fused = fuse(client, put_patches(client, horizontal(), rib(2.0)))
+    edge, face = free_edge_of(fused, 1, 2.0)
+    strips = client.ok("extend_edges", handle=fused["handle"], strips=[{"edge": edge, "face": face, "lengths": [1.25] * 5}])
+    rib_faces = [i for i, f in enumerate(fused["faces"]) if f["patch"] == 1]
+    parts = [{"handle": fused["handle"], "faces": rib_faces}, {"handle": strips["handle"], "faces": [0]}]
+    assert client.ok("gather", parts=parts)["faces"] == 2
+    merged = client.ok("gather", parts=parts, unify=1e-4)
+    assert merged["faces"] == 1
+    (merged_face,) = fuse(client, [merged["handle"]])["faces"]
+    assert merged_face["area"] == pytest.approx(38 * 40 + 1.25 * 40)
+
+
 def test_outward_points_away_from_the_face_whatever_the_edge_orientation(client):
     fused = fuse(client, put_patches(client, horizontal(), rib(2.0)))
     # Each free edge of the base (x = 0, x = 60, y = 0, y = 40) points out of the rectangle.
@@ -94,8 +109,8 @@ def test_a_tube_end_grows_along_its_own_cylinder():
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
 
-    from midsurf_sidecar.edge_strip import strip
-    from midsurf_sidecar.topology import surface_props
+    from midsurf_sidecar.joints.edge_strip import strip
+    from midsurf_sidecar.geom.topology import surface_props
 
     solid = BRepPrimAPI_MakeCylinder(2.0, 5.0).Shape()
     explorer = TopExp_Explorer(solid, TopAbs_FACE)
@@ -138,8 +153,8 @@ def test_a_saddle_edge_grown_onto_a_face_is_a_band_of_its_own_cylinder():
     from OCP.TopoDS import TopoDS
     from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
 
-    from midsurf_sidecar.edge_strip import strip
-    from midsurf_sidecar.topology import surface_props
+    from midsurf_sidecar.joints.edge_strip import strip
+    from midsurf_sidecar.geom.topology import surface_props
 
     branch = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2.0, 10.0).Shape()
     main = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-10, 0, 0), gp_Dir(1, 0, 0)), 5.0, 20.0).Shape()

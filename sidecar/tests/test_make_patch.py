@@ -15,7 +15,7 @@ from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt
 from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_FACE, TopAbs_VERTEX, TopAbs_WIRE
 from OCP.TopoDS import TopoDS
 
-from midsurf_sidecar.topology import indexed_map
+from midsurf_sidecar.geom.topology import indexed_map
 from shapes import (
     BEND_CENTRE,
     BEND_INNER,

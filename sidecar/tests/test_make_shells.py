@@ -13,7 +13,7 @@ from OCP.STEPControl import STEPControl_Reader
 from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL
 from OCP.TopExp import TopExp
 
-from midsurf_sidecar.topology import indexed_map
+from midsurf_sidecar.geom.topology import indexed_map
 from patch_shapes import horizontal, put_patches, rectangle, vertical
 
 

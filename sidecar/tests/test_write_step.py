@@ -17,8 +17,8 @@ from OCP.TopoDS import TopoDS_Compound
 from OCP.XCAFApp import XCAFApp_Application
 from OCP.XCAFDoc import XCAFDoc_ColorSurf, XCAFDoc_DocumentTool, XCAFDoc_ShapeTool
 
-from midsurf_sidecar.step_io import thickness_key
-from midsurf_sidecar.topology import indexed_map
+from midsurf_sidecar.write.step_writer import thickness_key
+from midsurf_sidecar.geom.topology import indexed_map
 from shapes import box
 
 

@@ -11,13 +11,13 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
-from .errors import OpError, one_line
+from ..geom.face_measure import measure
+from ..geom.topology import IndexedShapeMap
+from ..geom.vectors import Vec
+from ..protocol.errors import OpError, one_line
 from .face_clip import clip_to_partners
-from .face_measure import measure
 from .face_offset import offset_face
 from .face_projection import project_face
-from .topology import IndexedShapeMap
-from .vectors import Vec
 
 FaceMaker = Callable[[TopoDS_Face], TopoDS_Face]
 

@@ -7,14 +7,9 @@ from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d
 from OCP.gp import gp_Pnt, gp_Vec
 from OCP.TopoDS import TopoDS_Edge
 
-from .face_normals import OutwardNormals
-from .vectors import cross, dot, norm, scale, xyz
-
-# Faces meeting at less than this are tangent (a fillet running into a wall): "smooth".
-SMOOTH_ANGLE = math.radians(1.0)
-# Interior parameters, as fractions of the edge's range, where the angle is sampled.
-SAMPLE_FRACTIONS = (0.25, 0.5, 0.75)
-
+from ..constants import CONVEXITY_SAMPLES, SMOOTH_ANGLE
+from ..geom.face_normals import OutwardNormals
+from ..geom.vectors import cross, dot, norm, scale, xyz
 
 def dihedral_angle(
     edge: TopoDS_Edge,
@@ -33,7 +28,7 @@ def dihedral_angle(
     pcurve2 = BRepAdaptor_Curve2d(edge, f2.face)
     first, last = curve.FirstParameter(), curve.LastParameter()
     angles = []
-    for fraction in SAMPLE_FRACTIONS:
+    for fraction in CONVEXITY_SAMPLES:
         t = first + fraction * (last - first)
         point, derivative = gp_Pnt(), gp_Vec()
         curve.D1(t, point, derivative)

@@ -16,7 +16,7 @@ from OCP.GeomAbs import (
     GeomAbs_Torus,
 )
 
-from .vectors import Vec, add_scaled, dot, norm, radial, scale, sub, xyz
+from ..geom.vectors import Vec, add_scaled, dot, norm, radial, scale, sub, xyz
 
 FREEFORM_KINDS = {
     GeomAbs_BSplineSurface: "bspline",

@@ -15,18 +15,10 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
-from .errors import KernelError
+from ..constants import BESIDE_EDGE_STEPS, FALLBACK_ANGLE, FALLBACK_DEFLECTION_RATIO, SINGULAR_METRIC
+from ..protocol.errors import KernelError
 from .face_normals import OutwardNormals
 from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
-
-# The fallback mesh only has to hold a few triangles well inside the face. Its deflection is a
-# fraction of the face's bounding-box diagonal, so it scales with the face; chords of a coarse
-# mesh cut across concave boundaries, hence each candidate is classified before it is used.
-FALLBACK_DEFLECTION_RATIO = 0.01
-FALLBACK_ANGLE = 0.5
-# Distances from an edge's middle, as fractions of the face's bounding-box diagonal, tried on both sides:
-# a ring 0.5 mm wide on a 100 m disc needs 1e-6.
-BESIDE_EDGE_STEPS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
 
 
 def interior_point(normals: OutwardNormals, diagonal: float) -> tuple[Vec, Vec]:
@@ -92,7 +84,7 @@ def _uv_across(
     # Least squares: a su + b sv = across.
     uu, uv_, vv = dot(xyz(su), xyz(su)), dot(xyz(su), xyz(sv)), dot(xyz(sv), xyz(sv))
     det = uu * vv - uv_ * uv_
-    if det <= 1e-300:
+    if det <= SINGULAR_METRIC:
         return None
     wu, wv = dot(xyz(su), across), dot(xyz(sv), across)
     a, b = (vv * wu - uv_ * wv) / det, (uu * wv - uv_ * wu) / det

@@ -14,15 +14,14 @@ from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Sphere, GeomAbs_
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
-from .errors import OpError, one_line
-from .face_normals import OutwardNormals
-from .face_point import interior_point
-from .surface_kind import describe_surface
-from .topology import diagonal, indexed_map
+from ..constants import COLLAPSE_RATIO
+from ..describe.surface_kind import describe_surface
+from ..geom.face_normals import OutwardNormals
+from ..geom.face_point import interior_point
+from ..geom.topology import diagonal, indexed_map
+from ..protocol.errors import OpError, one_line
 
 CURVED_KINDS = (GeomAbs_Cylinder, GeomAbs_Cone, GeomAbs_Sphere, GeomAbs_Torus)
-# An offset radius at or below this fraction of the original radius counts as collapsed.
-COLLAPSE_RATIO = 1e-6
 
 
 def offset_face(face: TopoDS_Face, distance: float) -> TopoDS_Face:

@@ -20,20 +20,12 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_VERTEX
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Vertex, TopoDS_Wire
 
-from .errors import OpError
-from .face_normals import OutwardNormals
-from .face_point import interior_point
-from .topology import diagonal, face_wires, indexed_map
-from .vectors import Vec, add_scaled, dot, norm, scale, sub, xyz
-
-# |cos| between the source face's normal and the plane normal below which the face is edge-on to the
-# plane: its projection would be a sliver.
-EDGE_ON_COSINE = 1e-3
-# Relative parameter step below which a periodic edge's ends coincide (the edge goes once round).
-PARAMETER_RESOLUTION = 1e-9
-# A projected curve may miss its projected vertex by its tolerance or this much (mm), whichever is larger,
-# before the projection is refused; ProjLib's approximations stay within 1e-5 or so.
-MAX_VERTEX_MISS = 1e-3
+from ..constants import EDGE_ON_COSINE, EDGE_ON_TANGENT, INFINITE_PARAMETER, MAX_VERTEX_MISS, PARAMETER_RESOLUTION, VERTEX_MISS_MARGIN
+from ..geom.face_normals import OutwardNormals
+from ..geom.face_point import interior_point
+from ..geom.topology import diagonal, face_wires, indexed_map
+from ..geom.vectors import Vec, add_scaled, dot, norm, scale, sub, xyz
+from ..protocol.errors import OpError
 
 
 def project_face(face: TopoDS_Face, origin: Vec, normal: Vec) -> TopoDS_Face:
@@ -135,7 +127,7 @@ class _Projector:
         for vertex, miss in ((v1, miss1), (v2, miss2)):
             if miss > BRep_Tool.Tolerance_s(vertex):
                 # So that MakeEdge accepts the vertex where the curve ends.
-                self.builder.UpdateVertex(vertex, 1.01 * miss)
+                self.builder.UpdateVertex(vertex, VERTEX_MISS_MARGIN * miss)
         maker = BRepBuilderAPI_MakeEdge(basis, v1, v2, p1, p2)
         if not maker.IsDone():
             raise OpError(f"cannot rebuild a projected edge ({maker.Error().name})", "patch_failed")
@@ -172,7 +164,7 @@ class _Projector:
         (or, where the start tangent is along the projection direction, from the middle of the edge)."""
         for t in (first, 0.5 * (first + last)):
             tangent = self._in_plane(xyz(curve.DN(t, 1)))
-            if norm(tangent) > 1e-9 * norm(xyz(curve.DN(t, 1))):
+            if norm(tangent) > EDGE_ON_TANGENT * norm(xyz(curve.DN(t, 1))):
                 point = self._on_plane(xyz(curve.Value(t)))
                 u = GeomAPI_ProjectPointOnCurve(gp_Pnt(*point), projected).LowerDistanceParameter()
                 return dot(tangent, xyz(projected.DN(u, 1))) >= 0.0
@@ -188,7 +180,7 @@ class _Projector:
         candidates = [(projector.Distance(i), projector.Parameter(i)) for i in range(1, count + 1)]
         # A vertex a little beyond the end of a bounded curve has no orthogonal projection on it.
         for end in (curve.FirstParameter(), curve.LastParameter()):
-            if abs(end) < 1e100:
+            if abs(end) < INFINITE_PARAMETER:
                 candidates.append((curve.Value(end).Distance(point), end))
         if not candidates:
             raise _Missed("a projected vertex is not on its projected edge")

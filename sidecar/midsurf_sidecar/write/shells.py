@@ -3,21 +3,24 @@ non-manifold edges are allowed), gathered in one compound: the shape written as 
 
 from typing import Any
 
-from OCP.BRep import BRep_Builder
+from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepTools import BRepTools
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_VERTEX
-from OCP.TopoDS import TopoDS_Compound, TopoDS_Shape, TopoDS_Shell
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape, TopoDS_Shell
 
-from .errors import KernelError
-from .patch_fuse import closing_isolines, split
-from .topology import IndexedShapeMap, indexed_map
+from ..constants import FULL_TURN
+from ..geom.booleans import split, within
+from ..geom.topology import IndexedShapeMap, indexed_map
+from ..protocol.errors import KernelError
 
 
 def make_shells(
     face_map: IndexedShapeMap, shells: list[list[int]], fuzzy: float
 ) -> tuple[TopoDS_Compound, dict[str, Any]]:
     """`face_map`: MapShapes(F, FACE); `shells`: valid, distinct 0-based indices into it. A face closed on
-    itself is split in two at its seam first (patch_fuse.closing_isolines), fuzzy `fuzzy`; its pieces keep its
+    itself is split in two at its seam first (closing_isolines), fuzzy `fuzzy`; its pieces keep its
     F-index.
 
     Returns (S, the reply's `faces`, `valid`, `invalid`, `edges` and `vertices`).
@@ -79,3 +82,27 @@ def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dic
     if len(taken) != result.Size() or any(result.FindIndex(f) == 0 for f in taken):
         return unsplit
     return pieces
+
+
+def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
+    """A face closed on itself (a tube's cylinder, a dome's sphere, an elbow's torus) is bounded by its seam
+    twice: that edge belongs to one face only, so a mesher or a topology check (the judge) takes it for a free
+    edge, a gap in the shell. Split in two along these isolines halfway round, the seam and the isoline each
+    join the two halves. Only for the shells written: split before trimming, a tube's overshoot past a tee
+    stayed joined to the rest of its tube along the isoline (salome_pipe)."""
+    tools = []
+    for shape in faces:
+        face = TopoDS.Face(shape)
+        surface = BRep_Tool.Surface_s(face)
+        if not (surface.IsUPeriodic() or surface.IsVPeriodic()):
+            continue  # most faces: no need for the UV bounds
+        u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+        isolines = []
+        if surface.IsUPeriodic() and u1 - u0 >= surface.UPeriod() * (1 - FULL_TURN):
+            isolines.append(BRepBuilderAPI_MakeEdge(surface.UIso((u0 + u1) / 2), v0, v1))
+        if surface.IsVPeriodic() and v1 - v0 >= surface.VPeriod() * (1 - FULL_TURN):
+            isolines.append(BRepBuilderAPI_MakeEdge(surface.VIso((v0 + v1) / 2), u0, u1))
+        for maker in isolines:
+            if maker.IsDone():
+                tools.extend(within(maker.Edge(), face))
+    return tools

@@ -9,14 +9,9 @@ from OCP.BRepTools import BRepTools
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
 
-from .errors import BadArgs, KernelError
-from .topology import diagonal
-
-ANGULAR_DEFLECTION = 0.5
-# Finest tolerance accepted, relative to the part's size. Beyond it the mesh of a large curved face
-# runs into millions of triangles and the sidecar can be killed for memory (a 250 m model meshed
-# at 0.1 mm was); at this ratio the same model takes 7 s and 200k triangles.
-MIN_RELATIVE_TOLERANCE = 1e-5
+from ..constants import MESH_ANGULAR_DEFLECTION, MIN_RELATIVE_MESH_TOLERANCE
+from ..geom.topology import diagonal
+from ..protocol.errors import BadArgs, KernelError
 
 
 def mesh_shape(shape: TopoDS_Shape, tolerance: float) -> None:
@@ -26,13 +21,13 @@ def mesh_shape(shape: TopoDS_Shape, tolerance: float) -> None:
     answer depend on earlier requests.
     """
     size = diagonal(shape)
-    if tolerance < size * MIN_RELATIVE_TOLERANCE:
+    if tolerance < size * MIN_RELATIVE_MESH_TOLERANCE:
         raise BadArgs(
             f"mesh_tolerance {tolerance} mm is too fine for a part {size:.6g} mm across: "
-            f"use at least {size * MIN_RELATIVE_TOLERANCE:.3g} mm"
+            f"use at least {size * MIN_RELATIVE_MESH_TOLERANCE:.3g} mm"
         )
     BRepTools.Clean_s(shape)
-    mesher = BRepMesh_IncrementalMesh(shape, tolerance, False, ANGULAR_DEFLECTION, False)
+    mesher = BRepMesh_IncrementalMesh(shape, tolerance, False, MESH_ANGULAR_DEFLECTION, False)
     if not mesher.IsDone():
         raise KernelError(f"BRepMesh_IncrementalMesh failed (tolerance {tolerance} mm)")
 

@@ -5,10 +5,8 @@ from OCP.BRepLProp import BRepLProp_SLProps
 from OCP.TopAbs import TopAbs_REVERSED
 from OCP.TopoDS import TopoDS_Face
 
+from ..constants import NORMAL_RESOLUTION
 from .vectors import Vec, xyz
-
-# Below this first-derivative magnitude the normal is undefined (cone apex, sphere pole).
-NORMAL_RESOLUTION = 1e-9
 
 
 class OutwardNormals:

@@ -24,9 +24,10 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_IN, TopAbs_OUT, TopAbs_REVERSED
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
-from .errors import BadArgs, KernelError
-from .topology import diagonal
-from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
+from ..constants import SIDE_STEP_RATIO, SIDE_STEP_TOLERANCES
+from ..geom.topology import diagonal
+from ..geom.vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
+from ..protocol.errors import BadArgs, KernelError
 
 
 @dataclass(frozen=True)
@@ -87,7 +88,7 @@ def _runs_backwards(face: TopoDS_Face, samples: list[EdgeSample]) -> bool:
     one a little outward on it (the rule got the side wrong)."""
     middle = samples[len(samples) // 2]
     tolerance = BRep_Tool.Tolerance_s(face)
-    step = max(1e-4 * diagonal(face), 20.0 * tolerance)
+    step = max(SIDE_STEP_RATIO * diagonal(face), SIDE_STEP_TOLERANCES * tolerance)
     inner = add_scaled(middle.point, middle.outward, -step)
     outer = add_scaled(middle.point, middle.outward, step)
     state_in = BRepClass_FaceClassifier(face, gp_Pnt(*inner), tolerance).State()

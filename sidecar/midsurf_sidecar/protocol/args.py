@@ -3,6 +3,7 @@
 import math
 from typing import Any
 
+from ..constants import ZERO_VECTOR
 from .errors import BadArgs
 
 
@@ -86,7 +87,7 @@ def require_direction(args: dict[str, Any], key: str) -> tuple[float, float, flo
     """A non-zero vector, returned normalised."""
     x, y, z = require_point(args, key)
     length = math.sqrt(x * x + y * y + z * z)
-    if length < 1e-12:
+    if length < ZERO_VECTOR:
         raise BadArgs(f"`{key}` must be a non-zero vector, got {[x, y, z]}")
     return x / length, y / length, z / length
 

@@ -24,17 +24,13 @@ from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
+from ..constants import AXIAL_DEG, CONFUSION, PCURVE_SAMPLES, STRIP_RELATIVE_TOLERANCE, SWEEP_PARALLEL
+from ..geom.face_normals import OutwardNormals
+from ..geom.face_point import interior_point
+from ..geom.topology import diagonal, indexed_map
+from ..geom.vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
+from ..protocol.errors import KernelError
 from .edge_probe import sample_edge
-from .errors import KernelError
-from .face_normals import OutwardNormals
-from .face_point import interior_point
-from .topology import diagonal, indexed_map
-from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
-
-# Outward directions (unit vectors) and lengths equal to this (relative) share are one sweep.
-PARALLEL = 1e-6
-# Tolerance of the faces made on a patch's own cylinder (OCCT's Precision::Confusion): they are exact.
-FACE_TOLERANCE = 1e-7
 
 
 def strip(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float], onto_face: bool = False) -> TopoDS_Face:
@@ -55,8 +51,8 @@ def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[f
     far = [add_scaled(s.point, s.outward, length) for s, length in zip(samples, lengths)]
     first = samples[0].outward
     axis = _cylinder_axis(face)
-    one_length = max(lengths) - min(lengths) <= PARALLEL * max(lengths)
-    if all(norm(sub(s.outward, first)) <= PARALLEL for s in samples) and one_length:
+    one_length = max(lengths) - min(lengths) <= SWEEP_PARALLEL * max(lengths)
+    if all(norm(sub(s.outward, first)) <= SWEEP_PARALLEL for s in samples) and one_length:
         # One direction, one length: the edge swept straight, which keeps the patch's own surface where it
         # can (a circle along its cylinder's axis stays that cylinder), so the strip merges into the patch.
         sweep = scale(first, sum(lengths) / len(lengths))
@@ -75,7 +71,7 @@ def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[f
     # Forward, so the ruled surface joins the near edge's first vertex to the far curve's first point.
     near = TopoDS.Edge(edge.Oriented(TopAbs_FORWARD))
     near_curve = BRepAdaptor_Curve(near)
-    tolerance = 1e-6 * max(norm(sub(far[-1], far[0])), max(lengths))
+    tolerance = STRIP_RELATIVE_TOLERANCE * max(norm(sub(far[-1], far[0])), max(lengths))
     if near_curve.GetType() == GeomAbs_Line and _collinear(far, tolerance):
         plane = _plane_of(face)
         if plane is not None and all(abs(plane.Distance(gp_Pnt(*p))) <= tolerance for p in far):
@@ -121,11 +117,11 @@ def _along_cylinder(face: TopoDS_Face, axis: Vec, edge: TopoDS_Shape, sweep: Vec
     prism would be a surface of extrusion, which unify_same_domain cannot merge into the cylinder)."""
     length = norm(sweep)
     along = dot(sweep, axis)
-    if abs(abs(along) - length) > PARALLEL * length:
+    if abs(abs(along) - length) > SWEEP_PARALLEL * length:
         return None
     curve = BRepAdaptor_Curve2d(TopoDS.Edge(edge), face)
     start, end = curve.Value(curve.FirstParameter()), curve.Value(curve.LastParameter())
-    if abs(start.Y() - end.Y()) > PARALLEL * max(1.0, length):
+    if abs(start.Y() - end.Y()) > SWEEP_PARALLEL * max(1.0, length):
         return None  # not an iso-v circle of the cylinder
     # v runs along the axis direction of the cylinder's frame, in length units.
     v0 = start.Y()
@@ -133,13 +129,12 @@ def _along_cylinder(face: TopoDS_Face, axis: Vec, edge: TopoDS_Shape, sweep: Vec
     if u1 - u0 <= 0.0:
         return None
     v1 = v0 + along
-    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v0, v1), max(v0, v1), FACE_TOLERANCE)
+    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v0, v1), max(v0, v1), CONFUSION)
     return maker.Face() if maker.IsDone() else None
 
 
 # A curved edge of a cylindrical patch whose outward directions mostly (the median) lie within this angle of
 # the axis (degrees) is swept along the axis: the saddle where a branch pipe meets its main.
-AXIAL_DEG = 45.0
 
 
 def _axial_sweep(axis: Vec, samples: list, lengths: list[float]) -> Vec | None:
@@ -152,15 +147,11 @@ def _axial_sweep(axis: Vec, samples: list, lengths: list[float]) -> Vec | None:
     median, limit = along[len(along) // 2], math.cos(math.radians(AXIAL_DEG))
     # The ends may turn across the axis: where an equal-radius branch touches its main, the saddle's
     # halves end upright.
-    if median >= limit and along[0] >= -PARALLEL:
+    if median >= limit and along[0] >= -SWEEP_PARALLEL:
         return scale(axis, max(lengths))
-    if median <= -limit and along[-1] <= PARALLEL:
+    if median <= -limit and along[-1] <= SWEEP_PARALLEL:
         return scale(axis, -max(lengths))
     return None
-
-
-# Points along an edge's pcurve to find its extent in the cylinder's parameters.
-PCURVE_SAMPLES = 64
 
 
 def _cylinder_band(face: TopoDS_Face, axis: Vec, edge: TopoDS_Shape, sweep: Vec) -> TopoDS_Face | None:
@@ -180,7 +171,7 @@ def _cylinder_band(face: TopoDS_Face, axis: Vec, edge: TopoDS_Shape, sweep: Vec)
         return None
     along = dot(sweep, axis)  # v runs along the axis of the cylinder's frame, in length units
     v0, v1 = (min(vs) + min(along, 0.0), max(vs) + max(along, 0.0))
-    band = BRepBuilderAPI_MakeFace(surface, u0, u1, v0, v1, FACE_TOLERANCE)
+    band = BRepBuilderAPI_MakeFace(surface, u0, u1, v0, v1, CONFUSION)
     if not band.IsDone():
         return None
     cut = BRepAlgoAPI_Cut(band.Face(), face)

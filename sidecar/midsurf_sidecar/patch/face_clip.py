@@ -23,18 +23,11 @@ from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopToo
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
-from .face_normals import OutwardNormals
-from .face_point import interior_point
-from .patch_fuse import split
-from .patch_unify import unify
-from .topology import diagonal, indexed_map, surface_props
-
-# The clip is kept only when it removes more than this share of the face: below it the face already lies
-# over its partners, and splitting its edges would only add work for the joints.
-MIN_CLIPPED_SHARE = 0.01
-
-# Two cylinder axes within this angle (radians) are parallel.
-PARALLEL_ANGLE = 1e-6
+from ..constants import CONFUSION, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AXES, SECTOR_INNER_SHARE
+from ..geom.booleans import split, unify
+from ..geom.face_normals import OutwardNormals
+from ..geom.face_point import interior_point
+from ..geom.topology import diagonal, indexed_map, surface_props
 
 
 def clip_to_partners(
@@ -128,7 +121,7 @@ def _width(face: TopoDS_Face, area: float) -> float:
     """Mean width of a face of `area`, 2 x area / perimeter: the width of a long band, the radius of a disc."""
     perimeter = GProp_GProps()
     BRepGProp.LinearProperties_s(face, perimeter)
-    return 2.0 * area / max(perimeter.Mass(), 1e-12)
+    return 2.0 * area / max(perimeter.Mass(), MIN_PERIMETER)
 
 
 def _is_plane(face: TopoDS_Face) -> bool:
@@ -141,7 +134,7 @@ def _coaxial(cylinder: gp_Cylinder, partner: TopoDS_Face, tolerance: float) -> g
     if surface.GetType() != GeomAbs_Cylinder:
         return None
     axis, other = cylinder.Axis(), surface.Cylinder().Axis()
-    if axis.IsParallel(other, PARALLEL_ANGLE) and gp_Lin(axis).Distance(other.Location()) <= tolerance:
+    if axis.IsParallel(other, PARALLEL_AXES) and gp_Lin(axis).Distance(other.Location()) <= tolerance:
         return surface.Cylinder()
     return None
 
@@ -157,7 +150,7 @@ def _sector(cylinder: gp_Cylinder, partner: TopoDS_Face, radius: float, reach: f
     x, y, z = gp_Vec(frame.XDirection()), gp_Vec(frame.YDirection()), gp_Vec(frame.Direction())
     start = x.Multiplied(math.cos(u0)).Added(y.Multiplied(math.sin(u0)))
     origin = gp_Vec(frame.Location().XYZ())
-    inner, outer = 0.5 * min(radius, cylinder.Radius()), cylinder.Radius() + reach
+    inner, outer = SECTOR_INNER_SHARE * min(radius, cylinder.Radius()), cylinder.Radius() + reach
 
     def corner(r, v):
         return gp_Pnt(origin.Added(start.Multiplied(r)).Added(z.Multiplied(v)).XYZ())
@@ -184,5 +177,5 @@ def _prism(outline: TopoDS_Face, normal: gp_Vec, reach: float) -> TopoDS_Shape:
 
 
 def _inside(classifier: BRepClass3d_SolidClassifier, point, tolerance: float) -> bool:
-    classifier.Perform(gp_Pnt(*point), max(tolerance, 1e-7))
+    classifier.Perform(gp_Pnt(*point), max(tolerance, CONFUSION))
     return classifier.State() == TopAbs_IN

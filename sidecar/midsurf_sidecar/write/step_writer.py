@@ -1,11 +1,11 @@
-"""STEP import (solids as handles) and XCAF export (per-face names, colours, thickness)."""
+"""STEP export with XCAF attributes (per-face names, colours, thickness) and the glTF preview of the same
+document."""
 
 import os
 from dataclasses import dataclass
 
 from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
 from OCP.Bnd import Bnd_Box
-from OCP.BRep import BRep_Tool
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.IFSelect import IFSelect_RetDone
@@ -15,20 +15,19 @@ from OCP.Quantity import Quantity_Color, Quantity_TOC_sRGB
 from OCP.RWGltf import RWGltf_CafWriter
 from OCP.RWMesh import RWMesh_CoordinateSystem_Zup
 from OCP.STEPCAFControl import STEPCAFControl_Controller, STEPCAFControl_Writer
-from OCP.STEPControl import STEPControl_AsIs, STEPControl_Reader
+from OCP.STEPControl import STEPControl_AsIs
 from OCP.collections import IndexedDataMap_TCollection_AsciiString_TCollection_AsciiString as FileInfo
 from OCP.TCollection import TCollection_AsciiString, TCollection_ExtendedString, TCollection_HAsciiString
 from OCP.TDataStd import TDataStd_Name, TDataStd_NamedData
 from OCP.TDocStd import TDocStd_Document
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID, TopAbs_VERTEX
+from OCP.TopAbs import TopAbs_FACE
 from OCP.TopoDS import TopoDS_Shape
 from OCP.XCAFApp import XCAFApp_Application
 from OCP.XCAFDoc import XCAFDoc_ColorSurf, XCAFDoc_DocumentTool
 
-from .errors import BadArgs, OpError
-from .topology import indexed_map
-
-FIXED_TIME_STAMP = "1970-01-01T00:00:00"
+from ..constants import FIXED_TIME_STAMP, GLTF_INPUT_LENGTH_UNIT, PREVIEW_ANGULAR_DEFLECTION, PREVIEW_MIN_DEFLECTION, PREVIEW_RELATIVE_DEFLECTION
+from ..geom.topology import indexed_map
+from ..protocol.errors import BadArgs, OpError
 
 
 @dataclass(frozen=True)
@@ -39,57 +38,6 @@ class FaceAttributes:
     name: str | None
     color: tuple[float, float, float] | None
     thickness: float | None
-
-
-def load_step(path: str) -> list[TopoDS_Shape]:
-    """Solids of the STEP file at `path`, in TopExp order; OpError with the protocol code otherwise."""
-    if not os.path.exists(path):
-        raise OpError("no such file", "not_found")
-    if not os.path.isfile(path):
-        kind = "a directory" if os.path.isdir(path) else "not a regular file"
-        raise OpError(f"is {kind}; pass the path of a .step file", "not_a_file")
-    if not os.access(path, os.R_OK):
-        raise OpError("cannot read: permission denied", "read_failed")
-
-    reader = STEPControl_Reader()
-    status = reader.ReadFile(path)
-    # After a failed ReadFile the reader's model is unusable: even NbRootsForTransfer segfaults.
-    if status != IFSelect_RetDone:
-        empty = " (the file is empty)" if os.path.getsize(path) == 0 else ""
-        raise OpError(
-            f"not a readable STEP file{empty} (reader status {status.name}); "
-            "check that it is a complete STEP (ISO 10303-21) file",
-            "read_failed",
-        )
-    reader.TransferRoots()
-    shape = reader.OneShape()
-    if reader.NbShapes() == 0 or shape.IsNull():
-        raise OpError("holds no transferable shape, no solid", "no_solid")
-
-    solids = indexed_map(shape, TopAbs_SOLID)
-    if solids.Size() == 0:
-        raise OpError(f"has {_content_summary(shape)}, no solid", "no_solid")
-    return [solids.FindKey(i) for i in range(1, solids.Size() + 1)]
-
-
-def _content_summary(shape: TopoDS_Shape) -> str:
-    """What a solid-less shape holds, e.g. "3 faces, 1 open shell"."""
-    shells = indexed_map(shape, TopAbs_SHELL)
-    closed = sum(1 for i in range(1, shells.Size() + 1) if BRep_Tool.IsClosed_s(shells.FindKey(i)))
-    faces = indexed_map(shape, TopAbs_FACE).Size()
-    counts = [(faces, "face"), (shells.Size() - closed, "open shell"), (closed, "closed shell")]
-    if faces == 0:
-        # A wireframe: say what little it holds.
-        counts += [
-            (indexed_map(shape, TopAbs_EDGE).Size(), "edge"),
-            (indexed_map(shape, TopAbs_VERTEX).Size(), "vertex"),
-        ]
-    return ", ".join(_count(n, noun) for n, noun in counts if n > 0) or "nothing"
-
-
-def _count(n: int, noun: str) -> str:
-    plural = "vertices" if noun == "vertex" else noun + "s"
-    return f"{n} {noun if n == 1 else plural}"
 
 
 def write_step(path: str, shape: TopoDS_Shape, faces: list[FaceAttributes], preview: str | None = None) -> int:
@@ -113,7 +61,6 @@ def write_step(path: str, shape: TopoDS_Shape, faces: list[FaceAttributes], prev
     writer.SetMetadataMode(True)
     if not writer.Transfer(doc, STEPControl_AsIs):
         raise OpError(f"STEPCAFControl_Writer could not transfer the shape for {path}", "write_failed")
-    # The header's FILE_NAME carries the time of writing: fixed, so equal requests give equal bytes.
     APIHeaderSection_MakeHeader(writer.ChangeWriter().Model()).SetTimeStamp(
         TCollection_HAsciiString(FIXED_TIME_STAMP)
     )
@@ -131,12 +78,12 @@ def _write_glb(path: str, doc: TDocStd_Document, shape: TopoDS_Shape) -> None:
     box = Bnd_Box()
     BRepBndLib.Add_s(shape, box)
     diagonal = 1.0 if box.IsVoid() else box.CornerMin().Distance(box.CornerMax())
-    # A chordal deflection of 1/1000 of the part's size: smooth enough to look at, small enough to open.
-    BRepMesh_IncrementalMesh(shape, max(diagonal * 1e-3, 1e-4), False, 0.3, False)
+    deflection = max(diagonal * PREVIEW_RELATIVE_DEFLECTION, PREVIEW_MIN_DEFLECTION)
+    BRepMesh_IncrementalMesh(shape, deflection, False, PREVIEW_ANGULAR_DEFLECTION, False)
     writer = RWGltf_CafWriter(TCollection_AsciiString(path), True)
     # glTF is Y-up in metres; STEP here is Z-up in millimetres.
     converter = writer.ChangeCoordinateSystemConverter()
-    converter.SetInputLengthUnit(0.001)
+    converter.SetInputLengthUnit(GLTF_INPUT_LENGTH_UNIT)
     converter.SetInputCoordinateSystem(RWMesh_CoordinateSystem_Zup)
     if not writer.Perform(doc, FileInfo(), Message_ProgressRange()):
         raise OpError(f"the glTF writer could not write {path}", "write_failed")

@@ -19,14 +19,14 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_REVERSED, TopAbs_VERTEX
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
+from ..geom.face_normals import OutwardNormals
+from ..geom.face_point import interior_point
+from ..geom.topology import IndexedShapeMap, face_wires, indexed_map, surface_props, volume
+from ..geom.vectors import Vec, bbox_json, norm, sub, xyz
+from ..protocol.errors import KernelError, one_line
 from .edge_convexity import classify, dihedral_angle
-from .errors import KernelError, one_line
 from .face_mesh import face_mesh, mesh_shape
-from .face_normals import OutwardNormals
-from .face_point import interior_point
 from .surface_kind import describe_surface
-from .topology import IndexedShapeMap, face_wires, indexed_map, surface_props, volume
-from .vectors import Vec, bbox_json, norm, sub, xyz
 
 CURVE_KINDS = {
     GeomAbs_Line: "line",

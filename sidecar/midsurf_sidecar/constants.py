@@ -1,0 +1,118 @@
+"""Every tolerance, step and sample count the sidecar chooses itself, each with its reason.
+
+The part-dependent tolerances (fuzzy values, mesh deflection of `describe`, widths and reaches) come from Rust in
+each request, derived from the part's diagonal and t_max (src tolerances); these are the sidecar's own: kernel
+floors, numerical guards and sampling densities. Values relative to a size say which size. No OCP here: the
+protocol layer, which must import without OCP, uses it too. The protocol version lives in server.py.
+"""
+
+import math
+
+# --- kernel floors and numerical guards -------------------------------------------------------------------------
+
+# OCCT's Precision::Confusion() (mm): the smallest distance the kernel tells apart. The tolerance of faces built
+# exactly on a known surface, and the floor of a tolerance that comes in as 0 (a fuzzy value of 0 still needs the
+# kernel's own least tolerance to classify a point or merge coplanar faces).
+CONFUSION = 1e-7
+# OCCT marks the ends of an unbounded curve (a line) with Precision::Infinite() (2e100); anything beyond this is
+# such a marker, not a parameter.
+INFINITE_PARAMETER = 1e100
+# A direction given by a request shorter than this (in its own units) is the zero vector: no direction at all.
+ZERO_VECTOR = 1e-12
+# Divisor guard of a face's mean width (2 x area / perimeter, mm): a degenerate face with no perimeter has width 0.
+MIN_PERIMETER = 1e-12
+# Determinant of a surface's first fundamental form below which the parametrisation is singular there (a pole, an
+# apex): no direction across an edge can be solved for.
+SINGULAR_METRIC = 1e-300
+
+# --- describe: the face graph -------------------------------------------------------------------------------------
+
+# Faces meeting at less than this angle (radians) are tangent, a fillet running into a wall: "smooth".
+SMOOTH_ANGLE = math.radians(1.0)
+# Interior parameters, as fractions of the edge's range, where an edge's dihedral angle is sampled (the median is
+# kept, so one bad sample cannot flip the convexity).
+CONVEXITY_SAMPLES = (0.25, 0.5, 0.75)
+# Angular deflection (radians) of the meshes `describe` returns; the linear deflection comes from Rust.
+MESH_ANGULAR_DEFLECTION = 0.5
+# Finest mesh tolerance accepted, relative to the part's diagonal. Beyond it the mesh of a large curved face runs
+# into millions of triangles and the sidecar can be killed for memory (a 250 m model meshed at 0.1 mm was); at this
+# ratio the same model takes 7 s and 200k triangles.
+MIN_RELATIVE_MESH_TOLERANCE = 1e-5
+
+# --- geom: normals and a point inside a face ----------------------------------------------------------------------
+
+# Below this first-derivative magnitude the surface normal is undefined (a cone's apex, a sphere's pole).
+NORMAL_RESOLUTION = 1e-9
+# The fallback mesh of interior_point only has to hold a few triangles well inside the face: its deflection is this
+# share of the face's bounding-box diagonal, so it scales with the face (its chords may cut across concave
+# boundaries, hence each candidate is classified before it is used).
+FALLBACK_DEFLECTION_RATIO = 0.01
+FALLBACK_ANGLE = 0.5
+# Distances from an edge's middle, as fractions of the face's bounding-box diagonal, tried on both sides when
+# neither the UV centre nor a mesh triangle lies in the face: a ring 0.5 mm wide on a 100 m disc needs 1e-6.
+BESIDE_EDGE_STEPS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
+
+# --- patch: offset, projection, clip ------------------------------------------------------------------------------
+
+# An offset radius at or below this share of the original radius counts as collapsed onto the axis or centre
+# (OCCT would return a degenerate face it still calls valid).
+COLLAPSE_RATIO = 1e-6
+# |cos| between a face's normal and the projection plane's normal below which the face is edge-on to the plane:
+# its projection would be a sliver.
+EDGE_ON_COSINE = 1e-3
+# Relative parameter step (share of the period) below which a periodic edge's ends coincide: it goes once round.
+PARAMETER_RESOLUTION = 1e-9
+# A tangent shorter than this share of the curve's first derivative, once projected into the plane, runs along
+# the projection direction: its sense on the plane is read further along the edge.
+EDGE_ON_TANGENT = 1e-9
+# A projected curve may miss its projected vertex by the vertex's tolerance or this much (mm), whichever is
+# larger, before the projection is refused; ProjLib's approximations stay within 1e-5 or so.
+MAX_VERTEX_MISS = 1e-3
+# A vertex a projected curve misses gets its tolerance raised to the miss times this, so that MakeEdge accepts it
+# where the curve ends (1% over, not exactly the miss, which round-off could still exceed).
+VERTEX_MISS_MARGIN = 1.01
+# The clip is kept only when it removes more than this share of the face: below it the face already lies over its
+# partners, and splitting its edges would only add work for the joints.
+MIN_CLIPPED_SHARE = 0.01
+# Two cylinder axes within this angle (radians) are parallel: coaxial partners clip a cylindrical face.
+PARALLEL_AXES = 1e-6
+# A partner's sector starts at this share of the smaller radius: short of the axis, where a revolved section
+# degenerates and the splitter misses the sector's sides, and still inside any wall of that cylinder.
+SECTOR_INNER_SHARE = 0.5
+
+# --- fuse and write ---------------------------------------------------------------------------------------------
+
+# Angular tolerance (radians) of the same-domain test that merges a patch's faces: OCCT's default (1e-12) misses
+# faces that are coplanar to round-off (KERNEL_NOTES, "Extending").
+SAME_DOMAIN_ANGLE = 1e-6
+# Points reported along each fused edge, evenly spaced by parameter, both ends included (Rust reads an edge's
+# straightness and its ends from them).
+EDGE_POINTS = 5
+# A face spanning its surface's period to within this share closes on itself (UV bounds carry float noise).
+FULL_TURN = 1e-9
+# The STEP header's FILE_NAME carries the time of writing: fixed, so equal requests give equal bytes.
+FIXED_TIME_STAMP = "1970-01-01T00:00:00"
+# Chordal deflection of the glTF preview's mesh, as a share of the part's diagonal (smooth enough to look at,
+# small enough to open), with an absolute floor (mm) for a tiny part; and its angular deflection (radians).
+PREVIEW_RELATIVE_DEFLECTION = 1e-3
+PREVIEW_MIN_DEFLECTION = 1e-4
+PREVIEW_ANGULAR_DEFLECTION = 0.3
+# glTF lengths are metres, the STEP's millimetres: the writer's input unit, in metres.
+GLTF_INPUT_LENGTH_UNIT = 0.001
+
+# --- joints: probing and growing free edges -----------------------------------------------------------------------
+
+# The side test of an edge's outward direction steps this share of the face's diagonal off the edge, or this many
+# face tolerances if that is more, so the classifier sees the step whatever the face's size and tolerance.
+SIDE_STEP_RATIO = 1e-4
+SIDE_STEP_TOLERANCES = 20.0
+# Outward directions (unit vectors) and lengths equal to this (relative) share make one straight sweep; also how far
+# an edge's ends may differ in v (relative to the sweep, at least 1 mm) and still be a circle of its cylinder.
+SWEEP_PARALLEL = 1e-6
+# Tolerance of a strip's far curve and of its collinearity and planarity tests, relative to the strip's size.
+STRIP_RELATIVE_TOLERANCE = 1e-6
+# A strip on a cylindrical patch keeps to the cylinder when the samples grow along its axis: most within this
+# angle (degrees) of it, none against it.
+AXIAL_DEG = 45.0
+# Points along an edge's pcurve to find its extent in the cylinder's parameters.
+PCURVE_SAMPLES = 64

@@ -1,0 +1,68 @@
+"""The reply of `fuse`: each face of the fused shape with its patch and measurements, each edge with its faces,
+length and points (what Rust's joint and trim decisions read)."""
+
+from typing import Any
+
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve
+from OCP.GCPnts import GCPnts_AbscissaPoint
+from OCP.TopAbs import TopAbs_EDGE
+from OCP.TopExp import TopExp, TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Shape
+
+from ..constants import EDGE_POINTS
+from ..geom.face_measure import measure
+from ..geom.topology import IndexedShapeMap, indexed_map
+from ..geom.vectors import xyz
+from ..protocol.errors import KernelError, one_line
+
+
+def describe(fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int]) -> dict[str, Any]:
+    """The reply's `faces` (face_map: the faces of F; patch_of: the patch of each) and `edges`."""
+    edge_map = indexed_map(fused, TopAbs_EDGE)
+    edge_faces: list[list[int]] = [[] for _ in range(edge_map.Size())]
+    faces = []
+    for i in range(face_map.Size()):
+        face = TopoDS.Face(face_map.FindKey(i + 1))
+        edges, seams = _face_edges(face, edge_map)
+        for e in edges:
+            edge_faces[e].append(i)
+            if e in seams:
+                edge_faces[e].append(i)  # a seam joins the face to itself
+        try:
+            faces.append({"patch": patch_of[i], **measure(face), "edges": edges})
+        except Exception as exc:
+            raise KernelError(f"fused face {i} (patch {patch_of[i]}): {one_line(exc)}") from exc
+    edges_json = []
+    for e in range(edge_map.Size()):
+        try:
+            edges_json.append(_describe_edge(TopoDS.Edge(edge_map.FindKey(e + 1)), edge_faces[e]))
+        except Exception as exc:
+            raise KernelError(f"fused edge {e} (faces {edge_faces[e]}): {one_line(exc)}") from exc
+    return {"faces": faces, "edges": edges_json}
+
+
+def _face_edges(face: TopoDS_Shape, edge_map: IndexedShapeMap) -> tuple[list[int], set[int]]:
+    """(edge indices of the face in explorer order, a seam once; the seams). A seam is an edge the face uses
+    twice (once each way). Not BRep_Tool.IsClosed: a piece of a split tube keeps both pcurves on the old seam
+    edge although it uses it once, where it is a boundary like any other."""
+    uses: dict[int, int] = {}
+    explorer = TopExp_Explorer(face, TopAbs_EDGE)
+    while explorer.More():
+        e = edge_map.FindIndex(explorer.Current()) - 1
+        uses[e] = uses.get(e, 0) + 1
+        explorer.Next()
+    return list(uses), {e for e, n in uses.items() if n > 1}
+
+
+def _describe_edge(edge: TopoDS_Edge, faces: list[int]) -> dict[str, Any]:
+    if BRep_Tool.Degenerated_s(edge):
+        # No 3D curve: the edge is its vertex.
+        point = list(xyz(BRep_Tool.Pnt_s(TopExp.FirstVertex_s(edge))))
+        return {"length": 0.0, "faces": faces, "points": [point] * EDGE_POINTS}
+    curve = BRepAdaptor_Curve(edge)
+    first, last = curve.FirstParameter(), curve.LastParameter()
+    step = (last - first) / (EDGE_POINTS - 1)
+    points = [list(xyz(curve.Value(first + k * step))) for k in range(EDGE_POINTS - 1)]
+    points.append(list(xyz(curve.Value(last))))
+    return {"length": GCPnts_AbscissaPoint.Length_s(curve), "faces": faces, "points": points}

@@ -1,0 +1,142 @@
+"""`fuse`: patches split at their mutual intersections (BOPAlgo_Builder, non-destructive) so crossing patches
+share their crossing edges; each face of the result traced back to its patch through the builder's history."""
+
+from typing import Any
+
+from OCP.BOPAlgo import BOPAlgo_Builder
+from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Line
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_INTERNAL
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
+
+from ..geom.booleans import general_fuse, split, within
+from ..geom.topology import IndexedShapeMap, diagonal, indexed_map
+from ..protocol.errors import KernelError
+from .fused_graph import describe
+
+
+def fuse(patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool = False) -> tuple[TopoDS_Shape, dict[str, Any]]:
+    """(F, the reply's `faces` and `edges`).
+
+    Every FACE of every patch is an argument of its own, not every patch: BOPAlgo_Builder does not
+    intersect the sub-shapes of one argument with each other, so the separately offset faces of a patch
+    (plane + bend + plane) would keep unshared edges, and a single argument is refused outright
+    (BOPAlgo_AlertTooFewArguments). `split_internal`: faces are split along the T-joints ending inside them
+    (_internal_edge_lines); costly, so only for the result of a stitching pass. A seam lists its face twice,
+    as the two sides it joins: it is no free edge (closed faces are split at the seam only in make_shells).
+    """
+    # Every input face once, with the index of the first patch holding it.
+    inputs = IndexedShapeMap()
+    input_patch: list[int] = []
+    for k, patch in enumerate(patches):
+        explorer = TopExp_Explorer(patch, TopAbs_FACE)
+        while explorer.More():
+            if inputs.Add(explorer.Current()) > len(input_patch):
+                input_patch.append(k)
+            explorer.Next()
+    if inputs.Size() < 2:
+        # Nothing to intersect (and BOPAlgo refuses fewer than 2 arguments): F holds the face, if any.
+        fused, maker = TopoDS_Compound(), BRep_Builder()
+        maker.MakeCompound(fused)
+        if inputs.Size() == 1:
+            maker.Add(fused, inputs.FindKey(1))
+        patch_of = input_patch
+        face_map = indexed_map(fused, TopAbs_FACE)
+    else:
+        builder = general_fuse([inputs.FindKey(i + 1) for i in range(inputs.Size())], fuzzy)
+        fused = builder.Shape()
+        face_map = indexed_map(fused, TopAbs_FACE)
+        patch_of = _trace_patches(builder, inputs, input_patch, face_map)
+    if split_internal:
+        split_fused, patch_of = _split_faces(fused, face_map, patch_of, _internal_edge_lines(face_map), fuzzy)
+        if split_fused is not fused:
+            fused, face_map = split_fused, indexed_map(split_fused, TopAbs_FACE)
+    return fused, describe(fused, face_map, patch_of)
+
+
+def _internal_edge_lines(face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
+    """A T-joint that stops inside a face (a rib ending part way up a wall) is an INTERNAL edge of that face,
+    which STEP cannot carry: the face is split along the edge's line, through to its boundary, so the joint is
+    a boundary edge shared by the pieces and the stem. An arc (a boss's foot on its floor) is completed to its
+    circle, which cuts a disc out of the face. Other curves stay internal. `face_map`: the faces of the fused
+    shape."""
+    tools = []
+    for i in range(face_map.Size()):
+        face = TopoDS.Face(face_map.FindKey(i + 1))
+        explorer = TopExp_Explorer(face, TopAbs_EDGE)
+        while explorer.More():
+            edge = TopoDS.Edge(explorer.Current())
+            explorer.Next()
+            if edge.Orientation() != TopAbs_INTERNAL or BRep_Tool.Degenerated_s(edge):
+                continue
+            curve = BRepAdaptor_Curve(edge)
+            if curve.GetType() == GeomAbs_Line:
+                reach = diagonal(face)
+                first, last = curve.FirstParameter() - reach, curve.LastParameter() + reach
+                tools.extend(within(BRepBuilderAPI_MakeEdge(curve.Line(), first, last).Edge(), face))
+            elif curve.GetType() == GeomAbs_Circle:
+                tools.extend(within(BRepBuilderAPI_MakeEdge(curve.Circle()).Edge(), face))
+    return tools
+
+
+def _split_faces(
+    fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int], tools: list[TopoDS_Shape], fuzzy: float
+) -> tuple[TopoDS_Shape, list[int]]:
+    """`fused` (its faces `face_map`) split by the edges `tools` lying on its faces, each piece keeping its face's
+    patch; `fused` itself when there are no tools or OCCT gives up (no worse than before)."""
+    if not tools:
+        return fused, patch_of
+    splitter = split(fused, tools, fuzzy)
+    if splitter is None:
+        return fused, patch_of
+    result = splitter.Shape()
+    result_map = indexed_map(result, TopAbs_FACE)
+    split_patch: list[int | None] = [None] * result_map.Size()
+    for i in range(face_map.Size()):
+        face = face_map.FindKey(i + 1)
+        images = splitter.Modified(face)
+        for image in images if images.Size() else [face]:
+            index = result_map.FindIndex(image) - 1
+            if index >= 0 and split_patch[index] is None:
+                split_patch[index] = patch_of[i]
+    if any(p is None for p in split_patch):
+        return fused, patch_of
+    # Keep only the faces: the tools' edges outside every face would otherwise ride along as loose edges.
+    faces_only, builder = TopoDS_Compound(), BRep_Builder()
+    builder.MakeCompound(faces_only)
+    for j in range(result_map.Size()):
+        builder.Add(faces_only, result_map.FindKey(j + 1))
+    return faces_only, split_patch  # type: ignore[return-value]
+
+
+def _trace_patches(
+    builder: BOPAlgo_Builder, inputs: IndexedShapeMap, input_patch: list[int], face_map: IndexedShapeMap
+) -> list[int]:
+    """The patch of each face of the result: an input face is either kept as is (no images, not
+    deleted) or replaced by its images (Modified). A face claimed by two patches (fuzzy-merged overlaps)
+    keeps the lower patch index."""
+    patch_of: list[int | None] = [None] * face_map.Size()
+
+    def claim(face: TopoDS_Shape, patch: int) -> None:
+        index = face_map.FindIndex(face) - 1
+        if index >= 0 and patch_of[index] is None:
+            patch_of[index] = patch
+
+    for i in range(inputs.Size()):
+        face = inputs.FindKey(i + 1)
+        images = builder.Modified(face)
+        if images.Size() == 0:
+            if not builder.IsDeleted(face):
+                claim(face, input_patch[i])
+        elif images.Size() == 1:
+            claim(images.First(), input_patch[i])
+        else:
+            for image in images:
+                claim(image, input_patch[i])
+    missing = [i for i, patch in enumerate(patch_of) if patch is None]
+    if missing:
+        raise KernelError(f"fused faces {missing[:10]} come from no patch (BOPAlgo_Builder history)")
+    return patch_of  # type: ignore[return-value]

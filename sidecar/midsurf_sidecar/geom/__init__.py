@@ -1,0 +1,1 @@
+"""Geometry helpers every stage shares: vector arithmetic, indexed sub-shape maps and mass properties, outward normals, a point inside a face, a face's measurements, and the OCCT boolean calls with their settings."""

@@ -1,0 +1,1 @@
+"""Stage 1, `load_step`: the solids of a STEP file."""
