@@ -4,6 +4,7 @@ import math
 
 import pytest
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
+from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaces
 from OCP.GProp import GProp_GProps
@@ -93,15 +94,14 @@ def test_t_junction_in_one_shell_stays_non_manifold(client, tmp_path):
     assert faces_per_edge(back).count(3) == 1
 
 
-def test_disconnected_faces_in_one_shell_are_reported_invalid(client):
+def test_disconnected_faces_listed_in_one_shell_become_one_shell_each(client):
+    # A shell whose faces share no edge fails BRepCheck (NotConnected): each connected group is its own shell.
     far = rectangle((0, 0, 10), (6, 0, 10), (6, 4, 10), (0, 4, 10))
     f = fused(client, horizontal(), far)
-    bad = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[[0, 1]])
-    assert bad["valid"] is False
-    # The shell fails, not its faces: none is listed as invalid on its own.
-    assert bad["invalid"] == []
-    good = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[[0], [1]])
-    assert good["valid"] is True and good["invalid"] == []
+    one = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[[0, 1]])
+    assert one["shells"] == 2 and one["valid"] is True and one["invalid"] == []
+    two = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[[0], [1]])
+    assert two["shells"] == 2 and two["valid"] is True
 
 
 def test_no_shells_give_an_empty_compound_that_writes(client, tmp_path):
@@ -172,3 +172,28 @@ def test_a_tube_cut_through_its_seam_has_no_seam_left(client):
     assert not [e for e in f["edges"] if len(e["faces"]) != len(set(e["faces"]))]
     seam_line = [e for e in f["edges"] if all(abs(p[0] - 10.0) < 1e-6 and abs(p[1]) < 1e-6 for p in e["points"])]
     assert seam_line and all(len(set(e["faces"])) == 3 for e in seam_line), seam_line
+
+
+def elliptic_wall(z0: float):
+    """An elliptic wall (semi-axes 8 and 4 about x = 30, y = 20), three quarters round, from z = z0 up to 10:
+    its foot on the base is neither a line nor a circle, so splitting the base along it cannot close it."""
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
+    from OCP.gp import gp_Dir, gp_Elips, gp_Vec
+
+    ellipse = gp_Elips(gp_Ax2(gp_Pnt(30, 20, z0), gp_Dir(0, 0, 1)), 8.0, 4.0)
+    foot = BRepBuilderAPI_MakeEdge(ellipse, 0.0, 1.5 * math.pi).Edge()
+    return BRepPrimAPI_MakePrism(foot, gp_Vec(0, 0, 10.0 - z0)).Shape()
+
+
+def test_faces_joined_only_through_an_internal_edge_are_written_as_separate_valid_shells(client, tmp_path):
+    # The wall's foot stays an INTERNAL edge of the base; a STEP file keeps no internal edge, so one shell of both
+    # would read back with faces not connected (BRepCheck: NotConnected). Two shells read back valid.
+    f = client.ok("fuse", patches=put_patches(client, horizontal(), elliptic_wall(1.0)), fuzzy=1e-6, split_internal=True)
+    every = list(range(len(f["faces"])))
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[every])
+    assert ok["shells"] == 2 and ok["valid"] is True
+    path = tmp_path / "mid.step"
+    client.ok("write_step", handle=ok["handle"], path=str(path), faces=[])
+    back = read_step(path)
+    assert indexed_map(back, TopAbs_SHELL).Size() == 2
+    assert BRepCheck_Analyzer(back).IsValid()

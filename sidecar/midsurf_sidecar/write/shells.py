@@ -7,7 +7,8 @@ from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_VERTEX
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_VERTEX
+from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape, TopoDS_Shell
 
 from ..constants import FULL_TURN
@@ -23,19 +24,21 @@ def make_shells(
     itself is split in two at its seam first (closing_isolines), fuzzy `fuzzy`; its pieces keep its
     F-index.
 
-    Returns (S, the reply's `faces`, `valid`, `invalid`, `edges` and `vertices`).
+    Returns (S, the reply's `shells`, `faces`, `valid`, `invalid`, `edges` and `vertices`). `shells` counts
+    the shells written: a listed shell whose faces are joined only through INTERNAL edges is written as one
+    shell per connected group (_edge_connected).
     """
     pieces = _pieces(face_map, [i for face_ids in shells for i in face_ids], fuzzy)
     builder = BRep_Builder()
     compound = TopoDS_Compound()
     builder.MakeCompound(compound)
     for face_ids in shells:
-        shell = TopoDS_Shell()
-        builder.MakeShell(shell)
-        for face_id in face_ids:
-            for face in pieces[face_id]:
+        for group in _edge_connected([face for face_id in face_ids for face in pieces[face_id]]):
+            shell = TopoDS_Shell()
+            builder.MakeShell(shell)
+            for face in group:
                 builder.Add(shell, face)
-        builder.Add(compound, shell)
+            builder.Add(compound, shell)
     own = indexed_map(compound, TopAbs_FACE)
     source = [-1] * own.Size()
     for face_id, faces in pieces.items():
@@ -47,6 +50,7 @@ def make_shells(
     # Which faces fail, so the report can name their patches (checked only when the whole fails: one pass).
     invalid = [] if valid else [j for j in range(own.Size()) if not BRepCheck_Analyzer(own.FindKey(j + 1)).IsValid()]
     return compound, {
+        "shells": compound.NbChildren(),
         "faces": source,
         "valid": valid,
         "invalid": invalid,
@@ -106,3 +110,34 @@ def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
             if maker.IsDone():
                 tools.extend(within(maker.Edge(), face))
     return tools
+
+
+def _edge_connected(faces: list[TopoDS_Shape]) -> list[list[TopoDS_Shape]]:
+    """`faces` grouped by the boundary edges they share, in the order of their first face. A STEP file keeps no
+    INTERNAL edge (a joint ending inside a face along a curve that could not split it), so faces joined only
+    through one would make a shell whose faces are no longer connected once written (BRepCheck: NotConnected)."""
+    edge_index = IndexedShapeMap()
+    parent = list(range(len(faces)))
+    first_face: dict[int, int] = {}
+
+    def root(a: int) -> int:
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    for i, face in enumerate(faces):
+        explorer = TopExp_Explorer(face, TopAbs_EDGE)
+        while explorer.More():
+            edge = explorer.Current()
+            boundary = edge.Orientation() in (TopAbs_FORWARD, TopAbs_REVERSED)
+            if boundary and not BRep_Tool.Degenerated_s(TopoDS.Edge(edge)):
+                j = first_face.setdefault(edge_index.Add(edge), i)
+                a, b = root(i), root(j)
+                if a != b:
+                    parent[max(a, b)] = min(a, b)
+            explorer.Next()
+    groups: dict[int, list[TopoDS_Shape]] = {}
+    for i, face in enumerate(faces):
+        groups.setdefault(root(i), []).append(face)
+    return list(groups.values())
