@@ -8,11 +8,11 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::exit::Exit;
-use crate::face_graph::FaceGraph;
-use crate::features::LimitArgs;
-use crate::inspect::{self, SolidSummary};
-use crate::pairs_report::{self, PairingParams, SolidPairing};
-use crate::part::{self, MeshRequest};
+use crate::model::face_graph::FaceGraph;
+use crate::pairing::features::LimitArgs;
+use crate::output::inspect::{self, SolidSummary};
+use crate::pairing::driver::{self, PairingParams, SolidPairing};
+use crate::load::{self, MeshRequest};
 use crate::patch::plan::Position;
 
 /// Mid-surface generator for thin-walled CAD parts: a STEP solid in, a mid-surface STEP with a thickness per
@@ -106,7 +106,7 @@ pub struct PairingArgs {
     #[arg(long, value_parser = positive_mm)]
     pub t_max: Option<f64>,
     /// Largest draft angle of a wall side in degrees; draft pairs differ by up to twice this.
-    #[arg(long, default_value_t = crate::tolerance::DEFAULT_DRAFT_MAX_DEG, value_parser = draft_degrees)]
+    #[arg(long, default_value_t = crate::model::tolerance::DEFAULT_DRAFT_MAX_DEG, value_parser = draft_degrees)]
     pub draft_max: f64,
     /// Fillets and rounds up to this radius, and chamfers up to this width (mm), are suppressed: they do not
     /// pair, the joints bridge them [default: 2 x t_max].
@@ -191,8 +191,8 @@ struct SolidJson<'a> {
 }
 
 fn inspect_command(path: PathBuf, json: bool, mesh: bool) -> Result<Exit, Error> {
-    let mut sidecar = part::start_sidecar(&path)?;
-    let part = part::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: None })?;
+    let mut sidecar = load::start_sidecar(&path)?;
+    let part = load::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: None })?;
     sidecar.shutdown();
     let file = path.display().to_string();
     let text = if json {
@@ -220,17 +220,17 @@ struct PairsJson<'a> {
 }
 
 fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exit, Error> {
-    let mut sidecar = part::start_sidecar(&path)?;
-    let part = part::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
+    let mut sidecar = load::start_sidecar(&path)?;
+    let part = load::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
     sidecar.shutdown();
-    let solids: Vec<SolidPairing> = pairs_report::pair_part(&part, params);
+    let solids: Vec<SolidPairing> = driver::pair_part(&part, params);
     let file = path.display().to_string();
     let text = if json {
         serde_json::to_string_pretty(&PairsJson { file, solids: &solids }).expect("pairings always serialise") + "\n"
     } else {
         let mut out = format!("{file}: {} solid(s)\n", solids.len());
         for (i, (solid, sp)) in part.solids.iter().zip(&solids).enumerate() {
-            pairs_report::render(&mut out, i, &solid.graph, sp);
+            driver::render(&mut out, i, &solid.graph, sp);
         }
         out
     };

@@ -6,15 +6,15 @@ use std::time::Instant;
 
 use crate::error::Error;
 use crate::exit::Exit;
-use crate::face_graph::{FaceGraph, FaceId};
+use crate::model::face_graph::{FaceGraph, FaceId};
 use crate::geom::inside::SolidMesh;
-use crate::output::Pending;
-use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
-use crate::part::{self, MeshRequest};
+use crate::output::pending::Pending;
+use crate::pairing::driver::{pair_part, PairingParams, SolidPairing};
+use crate::load::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote, Position};
-use crate::patch::trim::{connected_sets, find_branches, keep_mask};
-use crate::report::{self, *};
-use crate::sidecar::protocol::{Clip, FaceAttributes, Fused, MadePatch, Request, Shells, Written};
+use crate::trim::{connected_sets, find_branches, keep_mask};
+use crate::output::report::{self, *};
+use crate::kernel::protocol::{Clip, FaceAttributes, Fused, MadePatch, Request, Shells, Written};
 use crate::stitch::{branch_limits, stitch, FreeEdges, JointReport, PatchInfo};
 
 pub struct RunArgs {
@@ -43,11 +43,11 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let optional = |path: &Option<PathBuf>| path.as_deref().map(|p| Pending::new(p, &args.input)).transpose();
     let (report_out, summary_out) = (optional(&args.report)?, optional(&args.summary)?);
     let (csv_out, preview_out) = (optional(&args.csv)?, optional(&args.preview)?);
-    let mut sidecar = part::start_sidecar(&args.input)?;
+    let mut sidecar = load::start_sidecar(&args.input)?;
     let kernel = |e| Error::Sidecar { path: args.input.clone(), error: e };
 
     let t = Instant::now();
-    let part = part::load(&mut sidecar, &args.input, MeshRequest { mesh: true, tolerance: None })?;
+    let part = load::load(&mut sidecar, &args.input, MeshRequest { mesh: true, tolerance: None })?;
     timings.load = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -132,7 +132,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
                 to_mid: m.plan.to_mid,
                 solid: m.solid - 1,
                 reach: tolerances.joint_reach + skin,
-                on_rim: crate::tolerance::on_rim(m.plan.thickness.mean, part.solids[m.solid - 1].mesh_tolerance),
+                on_rim: crate::model::tolerance::on_rim(m.plan.thickness.mean, part.solids[m.solid - 1].mesh_tolerance),
                 junction: junctions[m.solid - 1],
                 wall: (m.solid, m.plan.group),
             }
@@ -207,7 +207,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     timings.write = t.elapsed().as_secs_f64();
     timings.total = started.elapsed().as_secs_f64();
 
-    let topology = crate::topology::summarise(&fused, &keep, &shells, sets.len(), &patches, &joints, free);
+    let topology = crate::output::topology::summarise(&fused, &keep, &shells, sets.len(), &patches, &joints, free);
     let report = Report {
         report_version: REPORT_VERSION,
         midsurf_version: env!("CARGO_PKG_VERSION"),
@@ -365,7 +365,7 @@ fn patch_reports(made: &[Made], fused: &Fused, keep: &[bool]) -> Vec<PatchReport
     made.iter()
         .enumerate()
         .map(|(k, m)| {
-            let pieces: Vec<&crate::sidecar::protocol::FusedFace> =
+            let pieces: Vec<&crate::kernel::protocol::FusedFace> =
                 fused.faces.iter().enumerate().filter(|(i, f)| keep[*i] && f.patch == k).map(|(_, f)| f).collect();
             PatchReport {
                 id: k + 1,
@@ -449,7 +449,7 @@ fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidRepo
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sidecar::protocol::FusedFace;
+    use crate::kernel::protocol::FusedFace;
     use glam::DVec3;
 
     /// Fused pieces of the given (patch, area).

@@ -8,8 +8,8 @@
 use serde::Serialize;
 
 use super::{candidates, criteria, PairKind};
-use crate::face_graph::FaceGraph;
-use crate::tolerance::Tolerances;
+use crate::model::face_graph::FaceGraph;
+use crate::model::tolerance::Tolerances;
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ThicknessCluster {

@@ -9,11 +9,13 @@ pub mod criteria;
 pub mod estimate;
 pub mod groups;
 pub mod overlap;
+pub mod driver;
+pub mod features;
 
 use serde::Serialize;
 
-use crate::face_graph::{FaceGraph, FaceId};
-use crate::tolerance::Tolerances;
+use crate::model::face_graph::{FaceGraph, FaceId};
+use crate::model::tolerance::Tolerances;
 
 pub use groups::{FaceRole, PairGroup, Side};
 

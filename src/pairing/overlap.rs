@@ -7,7 +7,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::face_graph::{Face, Mesh};
+use crate::model::face_graph::{Face, Mesh};
 use crate::geom::clip::{signed_area, soup_overlap};
 use crate::geom::{plane_basis, ray::hit_triangle};
 

@@ -1,5 +1,4 @@
-//! Mid-patches: planning them from pair groups, and trimming the branches where they cross.
+//! Mid-patches: planning them from pair groups (which faces, where through the wall, which loops to fill).
 
 pub mod plan;
 pub mod sides;
-pub mod trim;

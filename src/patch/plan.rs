@@ -8,10 +8,10 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
+use crate::model::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
 use crate::pairing::{Pair, PairKind, Pairing, Side, Thickness};
 use crate::patch::sides::top_sides;
-use crate::sidecar::protocol::Placement;
+use crate::kernel::protocol::Placement;
 
 /// Where a patch lies through its wall, as shell pre-processors offer it; the thickness is the same for all.
 /// Every patch's normal points out of its wall's top side (see `sides`), so on `Top` the material lies on the
@@ -390,7 +390,7 @@ mod tests {
     use super::*;
     use crate::pairing::detect;
     use crate::synthetic;
-    use crate::tolerance::Tolerances;
+    use crate::model::tolerance::Tolerances;
 
     #[test]
     fn bisector_of_a_drafted_wall() {

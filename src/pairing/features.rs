@@ -24,7 +24,7 @@ use std::collections::BTreeSet;
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::face_graph::{Convexity, EdgeId, FaceGraph, FaceId, Surface};
+use crate::model::face_graph::{Convexity, EdgeId, FaceGraph, FaceId, Surface};
 use crate::pairing::FaceRole;
 
 /// Size limits of the features to suppress, in mm.
@@ -279,7 +279,7 @@ pub fn pairable(faces: usize, features: &[Feature]) -> Vec<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::face_graph::Edge;
+    use crate::model::face_graph::Edge;
     use crate::pairing::Side;
     use crate::synthetic;
 

@@ -12,8 +12,10 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::sidecar::protocol::{Fused, FusedFace};
-use crate::union_find::find;
+use crate::kernel::protocol::{Fused, FusedFace};
+use union_find::find;
+
+mod union_find;
 
 /// Overshoot allowance over the crossing patch's thickness (nominal overshoot 0.5).
 const BRANCH_WIDTH: f64 = 0.75;
@@ -150,7 +152,7 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
 
 /// The kept pieces (`keep`) that lie outside the material: `inside(face)` says whether a point of the face (moved
 /// to the middle of its wall) lies in its solid. A patch whose skin had a hole where another wall runs in (a
-/// branch pipe) is made with the hole filled (`pairs_report::junction_loops`), and the crossing wall cuts the
+/// branch pipe) is made with the hole filled (`pairing::driver::junction_loops`), and the crossing wall cuts the
 /// filling out as a piece of its own: across the branch's bore, where there is no material to be the middle of.
 /// Only pieces that touch another patch and are not their patch's largest: the body of a patch is never
 /// dropped, whatever a point of it says.
@@ -229,7 +231,7 @@ pub fn connected_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sidecar::protocol::{FusedEdge, FusedFace};
+    use crate::kernel::protocol::{FusedEdge, FusedFace};
 
     fn mid_limits(thickness: &[f64]) -> Vec<f64> {
         thickness.iter().map(|&t| branch_limit(t, 0.0)).collect()

@@ -2,14 +2,14 @@
 
 use serde::Serialize;
 
-use crate::face_graph::FaceId;
+use crate::model::face_graph::FaceId;
 use crate::pairing::estimate::TMaxEstimate;
 use crate::pairing::{FaceRole, PairGroup, PairKind, Thickness};
-use crate::patch::trim::{Branch, TrimReason};
+use crate::trim::{Branch, TrimReason};
 use crate::stitch::{FreeEdges, JointReport};
-use crate::tolerance::Tolerances;
-use crate::topology::round;
-use crate::topology::Topology;
+use crate::model::tolerance::Tolerances;
+use crate::output::topology::round;
+use crate::output::topology::Topology;
 
 /// Bumped when a field changes meaning or disappears.
 pub const REPORT_VERSION: u32 = 1;
@@ -57,9 +57,9 @@ pub struct SolidReport {
     pub t_max_estimate: TMaxEstimate,
     pub tolerances: Tolerances,
     /// Size limits of the small features (user values or defaults from t_max).
-    pub feature_limits: crate::features::Limits,
+    pub feature_limits: crate::pairing::features::Limits,
     /// Small features suppressed: kind, faces, size (fillet radius, hole diameter, boss box diagonal).
-    pub suppressed: Vec<crate::features::Feature>,
+    pub suppressed: Vec<crate::pairing::features::Feature>,
     pub groups: Vec<PairGroup>,
     pub roles: RoleCounts,
     pub unpaired: Vec<Unpaired>,

@@ -4,8 +4,8 @@
 use serde::Serialize;
 
 use crate::pairing::PairKind;
-use crate::report::PatchReport;
-use crate::sidecar::protocol::{Fused, Shells};
+use crate::output::report::PatchReport;
+use crate::kernel::protocol::{Fused, Shells};
 use crate::stitch::{FreeEdges, JointReport};
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -4,11 +4,11 @@ use std::fmt::Write;
 
 use serde::Serialize;
 
-use crate::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
-use crate::features::{self, Feature, LimitArgs, Limits};
+use crate::model::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
+use crate::pairing::features::{self, Feature, LimitArgs, Limits};
 use crate::pairing::estimate::{estimate_t_max, TMaxEstimate};
 use crate::pairing::{self, FaceRole, Pairing};
-use crate::tolerance::Tolerances;
+use crate::model::tolerance::Tolerances;
 
 /// What the user asked for; None means "estimate from the part".
 #[derive(Debug, Clone, Copy)]
@@ -174,7 +174,7 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
 }
 
 /// Pairs every solid of a part.
-pub fn pair_part(part: &crate::part::Part, params: PairingParams) -> Vec<SolidPairing> {
+pub fn pair_part(part: &crate::load::Part, params: PairingParams) -> Vec<SolidPairing> {
     part.solids.iter().map(|s| pair_solid(&s.graph, params)).collect()
 }
 
@@ -238,7 +238,7 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
         )
         .unwrap();
     }
-    let counts = crate::report::RoleCounts::of(&p.roles);
+    let counts = crate::output::report::RoleCounts::of(&p.roles);
     writeln!(
         out,
         "  roles: pair {}, thickness {}, connecting {}, suppressed {}, unpaired {}",
@@ -268,7 +268,7 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::face_graph::Convexity;
+    use crate::model::face_graph::Convexity;
     use crate::pairing::Side;
     use crate::synthetic::{cuboid, cylinder, graph, rect};
     use glam::DVec3;

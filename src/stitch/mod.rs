@@ -1,17 +1,19 @@
 //! Extend and stitch (Sheen et al. 5.4): grow the open free edges of the trimmed patches up to their partners,
 //! fuse again so every joint becomes a shared edge, and trim the overshoot.
 
+pub mod joint;
+
 use std::collections::{BTreeMap, BTreeSet};
 
 use serde::Serialize;
 
 use crate::geom::inside::SolidMesh;
-use crate::joint::{self, Verdict};
-use crate::patch::trim::{branch_limit, find_branches, keep_mask, outside_material, Branch};
-use crate::sidecar::protocol::{
+use joint::Verdict;
+use crate::trim::{branch_limit, find_branches, keep_mask, outside_material, Branch};
+use crate::kernel::protocol::{
     CornerRequest, EdgeProbe, EdgeRef, Extended, Fused, GatherPart, Gathered, Probed, Request, StripRequest,
 };
-use crate::sidecar::{Sidecar, SidecarError};
+use crate::kernel::{Sidecar, SidecarError};
 
 /// What one patch brings: its thickness, its solid (index into the solids' meshes) and how far its joints
 /// may reach.
@@ -24,7 +26,7 @@ pub struct PatchInfo {
     pub reach: f64,
     /// A free edge closer than this to the boundary is on the rim (`tolerance::on_rim`).
     pub on_rim: f64,
-    /// A patch of its solid was made with a junction loop filled (`pairs_report::junction_loops`): the pieces
+    /// A patch of its solid was made with a junction loop filled (`pairing::driver::junction_loops`): the pieces
     /// outside the material (the filling across the branch's bore, the branch's strip past the main) are trimmed.
     pub junction: bool,
     /// The wall (solid, pair group) the patch was made from: the levels of a thickness step share it.

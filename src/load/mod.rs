@@ -3,9 +3,9 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::Error;
-use crate::face_graph::FaceGraph;
-use crate::sidecar::protocol::{Loaded, Request};
-use crate::sidecar::{Sidecar, SidecarError};
+use crate::model::face_graph::FaceGraph;
+use crate::kernel::protocol::{Loaded, Request};
+use crate::kernel::{Sidecar, SidecarError};
 
 /// One solid of the part: its sidecar handle and its face graph.
 pub struct Solid {
@@ -69,7 +69,7 @@ pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Par
     let mut solids = Vec::with_capacity(loaded.solids.len());
     for solid in loaded.solids {
         let mesh_tolerance =
-            mesh.tolerance.unwrap_or_else(|| crate::tolerance::mesh_tolerance(solid.volume, solid.area));
+            mesh.tolerance.unwrap_or_else(|| crate::model::tolerance::mesh_tolerance(solid.volume, solid.area));
         let request = Request::Describe { handle: solid.handle, mesh: mesh.mesh, mesh_tolerance };
         let graph: FaceGraph = sidecar.call(&request).map_err(|e| classify(path, e))?;
         let problems = graph.validate();

@@ -19,7 +19,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-use crate::sidecar::protocol::{EdgeProbe, Hit};
+use crate::kernel::protocol::{EdgeProbe, Hit};
 
 /// Overshoot past the partner, as a share of the partner's thickness.
 pub const OVERSHOOT: f64 = 0.25;
@@ -230,7 +230,7 @@ const STEP_PARALLEL_DEG: f64 = 5.0;
 /// an upright quad: a shell mesher merges it into the thickness change, while the ramp's cut through the
 /// thicker patch drops every piece of it narrower than the run, with whatever joins there (a 0.15 mm step on
 /// fw13_top_cover's 2.7 mm boss cut off one of its joints).
-const STEP_LEVEL_SHARE: f64 = crate::tolerance::RIM_SHARE;
+const STEP_LEVEL_SHARE: f64 = crate::model::tolerance::RIM_SHARE;
 
 /// The thin edge spans the thick edge when it runs along this share of it.
 const STEP_SPAN_SHARE: f64 = 0.99;
