@@ -8,11 +8,11 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::exit::Exit;
+use crate::load::{self, MeshRequest};
 use crate::model::face_graph::FaceGraph;
-use crate::pairing::features::LimitArgs;
 use crate::output::inspect::{self, SolidSummary};
 use crate::pairing::driver::{self, PairingParams, SolidPairing};
-use crate::load::{self, MeshRequest};
+use crate::pairing::features::LimitArgs;
 use crate::patch::plan::Position;
 
 /// Mid-surface generator for thin-walled CAD parts: a STEP solid in, a mid-surface STEP with a thickness per
@@ -230,7 +230,7 @@ fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exi
     } else {
         let mut out = format!("{file}: {} solid(s)\n", solids.len());
         for (i, (solid, sp)) in part.solids.iter().zip(&solids).enumerate() {
-            driver::render(&mut out, i, &solid.graph, sp);
+            crate::output::pairs_table::render(&mut out, i, &solid.graph, sp);
         }
         out
     };

@@ -3,9 +3,9 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::Error;
-use crate::model::face_graph::FaceGraph;
 use crate::kernel::protocol::{Loaded, Request};
 use crate::kernel::{Sidecar, SidecarError};
+use crate::model::face_graph::FaceGraph;
 
 /// One solid of the part: its sidecar handle and its face graph.
 pub struct Solid {

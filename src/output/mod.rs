@@ -1,6 +1,12 @@
-//! Writing the results: the report and its topology summary, and files written atomically.
+//! The output stage: shells made of the stitched patches, the STEP written with each face's thickness, the
+//! report assembled with its topology summary, every file written atomically. Also `midsurf inspect`'s and
+//! `midsurf pairs`'s text.
 
+pub mod assemble;
+pub mod files;
 pub mod inspect;
+pub mod pairs_table;
 pub mod pending;
 pub mod report;
+pub mod shells;
 pub mod topology;

@@ -3,13 +3,14 @@
 use serde::Serialize;
 
 use crate::model::face_graph::FaceId;
-use crate::pairing::estimate::TMaxEstimate;
-use crate::pairing::{FaceRole, PairGroup, PairKind, Thickness};
-use crate::trim::{Branch, TrimReason};
-use crate::stitch::{FreeEdges, JointReport};
 use crate::model::tolerance::Tolerances;
+pub use crate::model::warning::Warning;
 use crate::output::topology::round;
 use crate::output::topology::Topology;
+use crate::pairing::estimate::TMaxEstimate;
+use crate::pairing::{FaceRole, PairGroup, PairKind, Thickness};
+use crate::stitch::{FreeEdges, JointReport};
+use crate::trim::{Branch, TrimReason};
 
 /// Bumped when a field changes meaning or disappears.
 pub const REPORT_VERSION: u32 = 1;
@@ -152,19 +153,6 @@ pub struct ResultSummary {
     /// Free edges of the result: on the part's rim, or open (inside the material: an unmade joint).
     /// Absent when stitching failed.
     pub free_edges: Option<FreeEdges>,
-}
-
-#[derive(Debug, Clone, Serialize)]
-pub struct Warning {
-    /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict,
-    /// thickness_step, partial_overlap, joint_failed, stitch_failed, open_edges, invalid_output,
-    /// feature_not_suppressed.
-    pub code: &'static str,
-    pub message: String,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub solid: Option<usize>,
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub faces: Vec<FaceId>,
 }
 
 #[derive(Debug, Clone, Default, Serialize)]

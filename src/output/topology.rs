@@ -3,9 +3,9 @@
 
 use serde::Serialize;
 
-use crate::pairing::PairKind;
+use crate::model::shapes::{Fused, Shells};
 use crate::output::report::PatchReport;
-use crate::kernel::protocol::{Fused, Shells};
+use crate::pairing::PairKind;
 use crate::stitch::{FreeEdges, JointReport};
 
 #[derive(Debug, Clone, PartialEq, Serialize)]

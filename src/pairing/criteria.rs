@@ -5,8 +5,8 @@ use glam::DVec3;
 
 use super::overlap::{self, Overlap};
 use super::{Pair, PairKind, Rejection, Thickness};
-use crate::model::face_graph::{Convexity, Face, FaceGraph, FaceId, Surface};
 use crate::geom::angle_between;
+use crate::model::face_graph::{Convexity, Face, FaceGraph, FaceId, Surface};
 use crate::model::tolerance::Tolerances;
 
 /// Tests whether faces `a` and `b` are the two skins of one wall.

@@ -6,11 +6,11 @@
 
 pub mod candidates;
 pub mod criteria;
+pub mod driver;
 pub mod estimate;
+pub mod features;
 pub mod groups;
 pub mod overlap;
-pub mod driver;
-pub mod features;
 
 use serde::Serialize;
 

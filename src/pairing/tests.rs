@@ -318,7 +318,10 @@ fn land_sides() -> Vec<Face> {
 }
 
 /// The graph of `faces` with each edge as long as given (the perimeters the widths are measured on).
-fn graph_with_lengths(faces: Vec<Face>, adjacent: &[(usize, usize, Convexity, f64)]) -> crate::model::face_graph::FaceGraph {
+fn graph_with_lengths(
+    faces: Vec<Face>,
+    adjacent: &[(usize, usize, Convexity, f64)],
+) -> crate::model::face_graph::FaceGraph {
     let edges: Vec<(usize, usize, Convexity)> = adjacent.iter().map(|&(a, b, c, _)| (a, b, c)).collect();
     let mut g = synthetic::graph(faces, &edges);
     for (edge, &(_, _, _, length)) in g.edges.iter_mut().zip(adjacent) {

@@ -9,9 +9,9 @@ use glam::DVec3;
 use serde::Serialize;
 
 use crate::model::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
+use crate::model::shapes::Placement;
 use crate::pairing::{Pair, PairKind, Pairing, Side, Thickness};
 use crate::patch::sides::top_sides;
-use crate::kernel::protocol::Placement;
 
 /// Where a patch lies through its wall, as shell pre-processors offer it; the thickness is the same for all.
 /// Every patch's normal points out of its wall's top side (see `sides`), so on `Top` the material lies on the
@@ -388,9 +388,9 @@ pub fn bisector(pa: DVec3, na: DVec3, pb: DVec3, nb: DVec3) -> (DVec3, DVec3) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::tolerance::Tolerances;
     use crate::pairing::detect;
     use crate::synthetic;
-    use crate::model::tolerance::Tolerances;
 
     #[test]
     fn bisector_of_a_drafted_wall() {

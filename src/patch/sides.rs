@@ -140,9 +140,9 @@ mod tests {
 
     use super::*;
     use crate::model::face_graph::Convexity;
+    use crate::model::tolerance::Tolerances;
     use crate::pairing::detect;
     use crate::synthetic;
-    use crate::model::tolerance::Tolerances;
 
     /// The side of `group` holding `face`.
     fn side_of(pairing: &Pairing, face: FaceId) -> (usize, Side) {

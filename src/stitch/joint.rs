@@ -19,7 +19,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-use crate::kernel::protocol::{EdgeProbe, Hit};
+use crate::model::shapes::{EdgeProbe, Hit};
 
 /// Overshoot past the partner, as a share of the partner's thickness.
 pub const OVERSHOOT: f64 = 0.25;

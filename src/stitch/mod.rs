@@ -1,19 +1,26 @@
 //! Extend and stitch (Sheen et al. 5.4): grow the open free edges of the trimmed patches up to their partners,
 //! fuse again so every joint becomes a shared edge, and trim the overshoot.
 
+mod edges;
+mod grow;
 pub mod joint;
+mod reach;
+#[cfg(test)]
+mod tests;
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 
 use serde::Serialize;
 
 use crate::geom::inside::SolidMesh;
-use joint::Verdict;
-use crate::trim::{branch_limit, find_branches, keep_mask, outside_material, Branch};
-use crate::kernel::protocol::{
-    CornerRequest, EdgeProbe, EdgeRef, Extended, Fused, GatherPart, Gathered, Probed, Request, StripRequest,
-};
-use crate::kernel::{Sidecar, SidecarError};
+use crate::kernel::protocol::EdgeRef;
+use crate::kernel::{Kernel, SidecarError};
+use crate::model::shapes::{EdgeProbe, Fused};
+use crate::model::warning::Warning;
+use crate::trim::{find_branches, keep_mask, outside_material, Branch, Trimmed};
+use edges::classify_free;
+use grow::{grow, JointTally, Pass};
+pub use reach::{branch_limits, patch_infos};
 
 /// What one patch brings: its thickness, its solid (index into the solids' meshes) and how far its joints
 /// may reach.
@@ -77,8 +84,8 @@ fn free_edges(fused: &Fused, keep: &[bool]) -> Vec<(usize, usize)> {
         .collect()
 }
 
-fn probe(
-    sidecar: &mut Sidecar,
+fn probe<K: Kernel>(
+    kernel: &mut K,
     fused: &Fused,
     free: &[(usize, usize)],
     targets: Vec<usize>,
@@ -89,19 +96,12 @@ fn probe(
     }
     let edges = free.iter().map(|&(edge, face)| EdgeRef { edge, face }).collect();
     let reach = patches.iter().map(|p| p.reach).fold(0.0, f64::max);
-    let probed: Probed =
-        sidecar.call(&Request::ProbeEdges { handle: fused.handle, edges, targets, samples: joint::SAMPLES, reach })?;
-    Ok(probed.edges)
-}
-
-/// How far a branch may hang past each patch.
-pub fn branch_limits(patches: &[PatchInfo]) -> Vec<f64> {
-    patches.iter().map(|p| branch_limit(p.thickness, p.to_mid)).collect()
+    kernel.probe_edges(fused.handle, edges, targets, joint::SAMPLES, reach)
 }
 
 /// The pieces of `fused` to drop: the branches hanging past crossings, then of the rest those of patches with a
 /// filled junction that lie outside the material; with the mask of the pieces kept.
-fn trim(fused: &Fused, patches: &[PatchInfo], solids: &[SolidMesh]) -> (Vec<bool>, Vec<Branch>) {
+pub(super) fn trim(fused: &Fused, patches: &[PatchInfo], solids: &[SolidMesh]) -> (Vec<bool>, Vec<Branch>) {
     let mut branches = find_branches(fused, &branch_limits(patches));
     let keep = keep_mask(fused.faces.len(), &branches);
     // Only where a junction was filled: elsewhere a piece of a patch out of the material is an overshoot the
@@ -116,72 +116,11 @@ fn trim(fused: &Fused, patches: &[PatchInfo], solids: &[SolidMesh]) -> (Vec<bool
     (keep_mask(fused.faces.len(), &branches), branches)
 }
 
-/// Whether the free edge of `face` lies in the material of its patch's solid.
-fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], solids: &[SolidMesh]) -> bool {
-    let patch = &patches[fused.faces[face].patch];
-    joint::is_open(probe, joint::PROBE_STEP * patch.thickness, patch.to_mid, |q| solids[patch.solid].contains(q))
-}
-
-/// How far the free edge `edge` of `face` must grow to reach the part's boundary (see
-/// `joint::rim_shortfall`). Only straight edges: a strip grown from a curved edge of a curved patch (a tube's
-/// end) is a ruled face off the patch's surface, and fusing it broke the patch it touched (salome_pipe).
-fn to_rim(
-    fused: &Fused,
-    edge: usize,
-    face: usize,
-    probe: &EdgeProbe,
-    patches: &[PatchInfo],
-    solids: &[SolidMesh],
-) -> Option<Vec<f64>> {
-    let points = &fused.edges[edge].points;
-    let chord = match (points.first(), points.last()) {
-        (Some(a), Some(b)) => a.distance(*b),
-        _ => 0.0,
-    };
-    if chord < STRAIGHT * fused.edges[edge].length {
-        return None;
-    }
-    shortfall(fused, face, probe, patches, solids)
-}
-
-/// How far the free edge of `face` stops short of the part's boundary, if it does (`joint::rim_shortfall`).
-fn shortfall(
-    fused: &Fused,
-    face: usize,
-    probe: &EdgeProbe,
-    patches: &[PatchInfo],
-    solids: &[SolidMesh],
-) -> Option<Vec<f64>> {
-    let patch = &patches[fused.faces[face].patch];
-    let solid = &solids[patch.solid];
-    let reach = joint::RIM_REACH * patch.thickness + patch.on_rim;
-    joint::rim_shortfall(
-        probe,
-        patch.to_mid,
-        patch.on_rim,
-        |q| solid.contains(q),
-        |q, d| solid.exit(q, d.normalize_or_zero(), reach),
-    )
-}
-
-/// An edge whose chord is this share of its length is straight.
-const STRAIGHT: f64 = 0.999;
-
-/// Which free edges a pass grows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Pass {
-    /// Every free edge: joints to partner patches, and edges short of the rim.
-    Joints,
-    /// The free edges left by the joints (an L-joint's overshoot that stayed joined to its patch past a wall's
-    /// end, for one), grown to the rim when it is within reach.
-    Rims,
-}
-
 /// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again (also without any
 /// extension: the final fuse splits faces along joints that end inside them). When edges are still open after
 /// that, one more pass grows the free edges that stop short of the rim.
-pub fn stitch(
-    sidecar: &mut Sidecar,
+pub fn stitch<K: Kernel>(
+    kernel: &mut K,
     fused: &Fused,
     keep: &[bool],
     patches: &[PatchInfo],
@@ -189,19 +128,19 @@ pub fn stitch(
     fuzzy: f64,
 ) -> Result<Stitched, SidecarError> {
     let mut tally = JointTally::default();
-    let (free, probes) = free_and_probed(sidecar, fused, keep, patches, true)?;
-    let grown = grow(sidecar, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
+    let (free, probes) = free_and_probed(kernel, fused, keep, patches, true)?;
+    let grown = grow(kernel, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
     let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
     // The free edges of the result, probed once for both the rims pass and the final count.
-    let (mut free, mut probes) = free_and_probed(sidecar, &fused, &keep, patches, false)?;
+    let (mut free, mut probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
     let (mut counted, mut open_patches) = classify_free(&fused, &free, &probes, patches, solids);
     if counted.open_edges > 0 {
         if let Some((again, again_keep, more)) =
-            grow(sidecar, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
+            grow(kernel, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
         {
             (fused, keep) = (again, again_keep);
             branches.extend(more);
-            (free, probes) = free_and_probed(sidecar, &fused, &keep, patches, false)?;
+            (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
             (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
         }
     }
@@ -210,8 +149,8 @@ pub fn stitch(
 
 /// The free edges of `fused` (pieces `keep`) and their probes, with their meetings with the kept pieces when
 /// `meetings` (a joints pass looks for partners; the rims pass and the final count do not).
-fn free_and_probed(
-    sidecar: &mut Sidecar,
+fn free_and_probed<K: Kernel>(
+    kernel: &mut K,
     fused: &Fused,
     keep: &[bool],
     patches: &[PatchInfo],
@@ -219,309 +158,92 @@ fn free_and_probed(
 ) -> Result<(Vec<(usize, usize)>, Vec<EdgeProbe>), SidecarError> {
     let free = free_edges(fused, keep);
     let targets = if meetings { kept_faces(keep) } else { Vec::new() };
-    let probes = probe(sidecar, fused, &free, targets, patches)?;
+    let probes = probe(kernel, fused, &free, targets, patches)?;
     Ok((free, probes))
 }
 
-fn kept_faces(keep: &[bool]) -> Vec<usize> {
+pub(super) fn kept_faces(keep: &[bool]) -> Vec<usize> {
     (0..keep.len()).filter(|&f| keep[f]).collect()
 }
 
-/// One pass of `stitch` over the free edges `free` of `fused` and their probes (with meetings for a joints
-/// pass): the result fused again, its kept pieces and the branches dropped; None when a rims pass finds
-/// nothing to grow.
-#[allow(clippy::too_many_arguments)]
-fn grow(
-    sidecar: &mut Sidecar,
-    fused: &Fused,
-    keep: &[bool],
-    free: &[(usize, usize)],
-    probes: &[EdgeProbe],
+/// What the stitch stage hands on: the fused patches with the pieces kept, every branch dropped (by trimming
+/// and by stitching), the joints, the free edges (None when stitching failed and the patches are written
+/// unstitched) and the warnings, in that order: open edges or the failure, then the joints not made.
+pub struct Outcome {
+    pub fused: Fused,
+    pub keep: Vec<bool>,
+    pub branches: Vec<Branch>,
+    pub joints: Vec<JointReport>,
+    pub free: Option<FreeEdges>,
+    pub warnings: Vec<Warning>,
+}
+
+/// The stitch stage on the trimmed patches. A kernel op that fails leaves the patches unstitched, with a
+/// warning; a kernel that stops answering is an error.
+pub fn stitch_part<K: Kernel>(
+    kernel: &mut K,
+    trimmed: Trimmed,
     patches: &[PatchInfo],
     solids: &[SolidMesh],
     fuzzy: f64,
-    pass: Pass,
-    tally: &mut JointTally,
-) -> Result<Option<(Fused, Vec<bool>, Vec<Branch>)>, SidecarError> {
-    let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
-    let patch_of: Vec<usize> = fused.faces.iter().map(|f| f.patch).collect();
-
-    // Per free edge: the strip it grows with its joint key, if any; and the open edges the step search sees.
-    let mut grows: Vec<Option<Planned>> = Vec::new();
-    let mut open_edges: Vec<OpenEdge> = Vec::new();
-    for (k, (&(edge, face), p)) in free.iter().zip(probes).enumerate() {
-        let patch = patch_of[face];
-        let length = fused.edges[edge].length;
-        let verdict = match pass {
-            Pass::Joints => {
-                let open = open(fused, face, p, patches, solids);
-                let info = &patches[patch];
-                let through = |k, length| {
-                    let step = joint::PROBE_STEP * info.thickness;
-                    joint::through_material(p, k, length, step, info.to_mid, |q| solids[info.solid].contains(q))
-                };
-                joint::decide(patch, open, p, &patch_of, &thickness, info.reach, through)
-            }
-            // Only growth to the rim; an edge that found no partner before is not counted again.
-            Pass::Rims => Verdict::Rim,
-        };
-        let grow = match verdict {
-            verdict @ (Verdict::Rim | Verdict::Unresolved) => match to_rim(fused, edge, face, p, patches, solids) {
-                Some(lengths) => Some((
-                    patch,
-                    StripRequest { edge, face, lengths, onto_face: false },
-                    (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
-                    p,
-                )),
-                None => {
-                    // A rim edge may still be the thicker level of a step: the thinner level's edge lies on the
-                    // boundary past it, so its outside reads as out of the material.
-                    let open = verdict == Verdict::Unresolved;
-                    if pass == Pass::Joints {
-                        open_edges.push(OpenEdge { free: k, patch, probe: p, length, nearest: f64::INFINITY, open });
-                    }
-                    None
-                }
-            },
-            Verdict::Extend(x) => {
-                open_edges.push(OpenEdge { free: k, patch, probe: p, length, nearest: x.distance, open: true });
-                let mut ids = vec![patch + 1, x.partner + 1];
-                ids.sort_unstable();
-                Some((
-                    patch,
-                    StripRequest { edge, face, lengths: x.lengths, onto_face: x.kind == joint::JointKind::T },
-                    (ids, x.kind.name(), "extended"),
-                    p,
-                ))
-            }
-        };
-        grows.push(grow);
-    }
-    let (steps, bridged) = step_quads(&open_edges, patches, tally);
-    let planned: Vec<Planned> =
-        grows.into_iter().enumerate().filter(|(k, _)| !bridged.contains(k)).filter_map(|(_, g)| g).collect();
-    if pass == Pass::Rims && planned.is_empty() && steps.is_empty() {
-        return Ok(None);
-    }
-    // (patch, index among the faces of the extension's handle) of each made strip and corner.
-    let mut strips: Vec<(usize, usize)> = Vec::new();
-    let mut extended_handle = None;
-    if !planned.is_empty() || !steps.is_empty() {
-        let corners = corners(&planned, fuzzy);
-        let extended: Extended = sidecar.call(&Request::ExtendEdges {
-            handle: fused.handle,
-            strips: planned.iter().map(|(_, s, _, _)| s.clone()).collect(),
-            corners: corners.iter().map(|(_, c)| c).chain(steps.iter().map(|(_, c, _, _)| c)).cloned().collect(),
-        })?;
-        for ((patch, request, key, _), made) in planned.into_iter().zip(&extended.strips) {
-            let length = fused.edges[request.edge].length;
-            if made.area.is_some() {
-                strips.push((patch, strips.len()));
-                tally.add(key, length);
-            } else {
-                tally.add((key.0, key.1, "kernel_failed"), length);
-            }
+) -> Result<Outcome, SidecarError> {
+    let Trimmed { fused, keep, mut branches } = trimmed;
+    let mut warnings = Vec::new();
+    let (fused, keep, joints, free) = match stitch(kernel, &fused, &keep, patches, solids, fuzzy) {
+        Ok(s) => {
+            branches.extend(s.branches);
+            warnings.extend(open_edges_warning(&s.free, &s.open_patches));
+            (s.fused, s.keep, s.joints, Some(s.free))
         }
-        for (&(patch, _), made) in corners.iter().zip(&extended.corners) {
-            if made.area.is_some() {
-                strips.push((patch, strips.len()));
-            }
+        Err(e) if e.code().is_some() => {
+            warnings.push(Warning {
+                code: "stitch_failed",
+                message: format!("the patches are written unstitched: {e}"),
+                solid: None,
+                faces: Vec::new(),
+            });
+            (fused, keep, Vec::new(), None)
         }
-        for ((patch, _, key, lengths), made) in steps.into_iter().zip(&extended.corners[corners.len()..]) {
-            let status = if made.area.is_some() {
-                strips.push((patch, strips.len()));
-                key.2
-            } else {
-                "kernel_failed"
-            };
-            for length in lengths {
-                tally.add((key.0.clone(), key.1, status), length);
-            }
-        }
-        extended_handle = Some(extended.handle);
-    }
-
-    // One argument per patch: its kept pieces and its strips (each list ascending, as found).
-    let mut pieces_of: Vec<Vec<usize>> = vec![Vec::new(); patches.len()];
-    for f in kept_faces(keep) {
-        pieces_of[patch_of[f]].push(f);
-    }
-    let mut strips_of: Vec<Vec<usize>> = vec![Vec::new(); patches.len()];
-    for &(p, j) in &strips {
-        strips_of[p].push(j);
-    }
-    let mut order: Vec<usize> = Vec::new();
-    let mut handles = Vec::new();
-    for (k, (pieces, own)) in pieces_of.into_iter().zip(strips_of).enumerate() {
-        let mut parts = Vec::new();
-        // Only a patch with strips has faces to merge.
-        let unify = (!own.is_empty()).then_some(fuzzy);
-        if !pieces.is_empty() {
-            parts.push(GatherPart { handle: fused.handle, faces: pieces });
-        }
-        if let (Some(handle), false) = (extended_handle, own.is_empty()) {
-            parts.push(GatherPart { handle, faces: own });
-        }
-        if parts.is_empty() {
-            continue;
-        }
-        let gathered: Gathered = sidecar.call(&Request::Gather { parts, unify })?;
-        order.push(k);
-        handles.push(gathered.handle);
-    }
-    let mut again: Fused = sidecar.call(&Request::Fuse { patches: handles, fuzzy, split_internal: true })?;
-    for face in &mut again.faces {
-        face.patch = order[face.patch];
-    }
-    let (keep, branches) = trim(&again, patches, solids);
-    Ok(Some((again, keep, branches)))
-}
-
-/// A free edge for the step search: its index among the free edges, patch, probe, length, how far away the
-/// partner its rays found is (infinite for none), and whether it is open (else on the rim).
-struct OpenEdge<'a> {
-    free: usize,
-    patch: usize,
-    probe: &'a EdgeProbe,
-    length: f64,
-    nearest: f64,
-    open: bool,
-}
-
-/// The quads bridging open edges across thickness steps (`joint::step_bridges`), each owned by its `owner`
-/// edge's patch, with its joint key and the lengths of both edges; and the free edges (indices) bridged. The
-/// edges that found no partner and no bridge are tallied as having no partner.
-fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) -> (Vec<StepQuad>, BTreeSet<usize>) {
-    let edges: Vec<joint::LooseEdge> = open
-        .iter()
-        .map(|e| {
-            let p = e.probe;
-            let mid = p.points.len() / 2;
-            joint::LooseEdge {
-                patch: e.patch,
-                wall: patches[e.patch].wall,
-                thickness: patches[e.patch].thickness,
-                nearest: e.nearest,
-                open: e.open,
-                points: p.points.clone(),
-                normal: p.normals[mid],
-                outward: p.outward[mid],
-            }
-        })
-        .collect();
-    let mut bridged = vec![false; open.len()];
-    let mut out = Vec::new();
-    for joint::StepBridge { owner, other, quad, normal } in joint::step_bridges(&edges) {
-        (bridged[owner], bridged[other]) = (true, true);
-        let mut ids = vec![edges[owner].patch + 1, edges[other].patch + 1];
-        ids.sort_unstable();
-        let request = CornerRequest { points: quad, normal };
-        let lengths = [open[owner].length, open[other].length];
-        out.push((edges[owner].patch, request, (ids, joint::JointKind::Step.name(), "extended"), lengths));
-    }
-    for (e, _) in open.iter().zip(&bridged).filter(|(e, &b)| !b && e.open && e.nearest.is_infinite()) {
-        tally.add((vec![e.patch + 1], "none", "no_partner"), e.length);
-    }
-    let free = open.iter().zip(&bridged).filter(|(_, &b)| b).map(|(e, _)| e.free).collect();
-    (out, free)
-}
-
-/// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
-/// and end both growing into the walls they meet): a quad v, a, c, b fills it, where a and b are the strips'
-/// far corners over v and c = a + b - v. Edges continuing each other (outward directions within 10 degrees)
-/// need none; at a reflex corner the strips overlap instead.
-fn corners(planned: &[Planned], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
-    let same_point = (fuzzy * 10.0).max(1e-9);
-    let continuing = 10f64.to_radians().cos();
-    // (point, direction along the edge into that end, outward, length, normal) at both ends of a strip.
-    let ends = |s: &StripRequest, p: &EdgeProbe| {
-        let n = p.points.len();
-        [
-            (p.points[0], (p.points[0] - p.points[1]).normalize_or_zero(), p.outward[0], s.lengths[0], p.normals[0]),
-            (
-                p.points[n - 1],
-                (p.points[n - 1] - p.points[n - 2]).normalize_or_zero(),
-                p.outward[n - 1],
-                s.lengths[n - 1],
-                p.normals[n - 1],
-            ),
-        ]
+        Err(e) => return Err(e),
     };
-    let mut out = Vec::new();
-    for (i, (patch, a, _, pa)) in planned.iter().enumerate() {
-        for (b, pb) in planned[i + 1..].iter().filter(|(_, b, _, _)| b.face == a.face).map(|(_, b, _, p)| (b, p)) {
-            for &(va, along_a, out_a, len_a, normal) in &ends(a, pa) {
-                for &(vb, along_b, out_b, len_b, _) in &ends(b, pb) {
-                    let convex = out_b.dot(along_a) > 0.0 && out_a.dot(along_b) > 0.0;
-                    if va.distance(vb) > same_point || out_a.dot(out_b) > continuing || !convex {
-                        continue;
-                    }
-                    let far_a = va + out_a * len_a;
-                    let far_b = va + out_b * len_b;
-                    out.push((*patch, CornerRequest { points: [va, far_a, far_a + far_b - va, far_b], normal }));
-                }
-            }
-        }
-    }
-    out
+    warnings.extend(joint_warnings(&joints));
+    Ok(Outcome { fused, keep, branches, joints, free, warnings })
 }
 
-/// Sorts the free edges of the result into rim and open (the inside test of `decide`, or the edge stopping short
-/// of the boundary by more than the rim tolerance); also the patches with an open edge.
-fn classify_free(
-    fused: &Fused,
-    free: &[(usize, usize)],
-    probes: &[EdgeProbe],
-    patches: &[PatchInfo],
-    solids: &[SolidMesh],
-) -> (FreeEdges, BTreeSet<usize>) {
-    let mut out = FreeEdges::default();
-    let mut open_patches = BTreeSet::new();
-    for (&(edge, face), p) in free.iter().zip(probes) {
-        let length = fused.edges[edge].length;
-        // Short of the rim is open too: the material goes on past the edge, if only for a round's width.
-        if open(fused, face, p, patches, solids) || shortfall(fused, face, p, patches, solids).is_some() {
-            out.open_edges += 1;
-            out.open_length += length;
-            open_patches.insert(fused.faces[face].patch);
-        } else {
-            out.rim_edges += 1;
-            out.rim_length += length;
-        }
-    }
-    (out, open_patches)
+fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
+    joints
+        .iter()
+        .filter(|j| j.status != "extended")
+        .map(|j| Warning {
+            code: "joint_failed",
+            message: match j.status {
+                "no_partner" => format!(
+                    "patch {}: {} open edge(s), {:.3} mm, meet no patch within reach; left unstitched",
+                    j.patches[0], j.edges, j.length
+                ),
+                _ => format!(
+                    "{} joint of patches {:?}: the kernel could not grow {} edge(s), {:.3} mm",
+                    j.kind, j.patches, j.edges, j.length
+                ),
+            },
+            solid: None,
+            faces: Vec::new(),
+        })
+        .collect()
 }
 
-/// Patch ids (sorted), kind, status.
-type JointKey = (Vec<usize>, &'static str, &'static str);
-
-/// A strip to grow: its patch, the request, its joint key and the probe of its edge.
-type Planned<'a> = (usize, StripRequest, JointKey, &'a EdgeProbe);
-
-/// A step bridge: the patch owning it, the quad, its joint key and the lengths of its two edges.
-type StepQuad = (usize, CornerRequest, JointKey, [f64; 2]);
-
-/// Edges and length per joint key, in key order (deterministic).
-#[derive(Default)]
-struct JointTally(BTreeMap<JointKey, (usize, f64)>);
-
-impl JointTally {
-    fn add(&mut self, key: JointKey, length: f64) {
-        let entry = self.0.entry(key).or_default();
-        entry.0 += 1;
-        entry.1 += length;
-    }
-
-    fn reports(&self) -> Vec<JointReport> {
-        self.0
-            .iter()
-            .map(|((patches, kind, status), &(edges, length))| JointReport {
-                patches: patches.clone(),
-                kind,
-                status,
-                edges,
-                length,
-            })
-            .collect()
-    }
+/// Open edges left after stitching are gaps in the mid-surface a mesher would keep: said once, with the patches.
+fn open_edges_warning(free: &FreeEdges, open_patches: &BTreeSet<usize>) -> Option<Warning> {
+    (free.open_edges > 0).then(|| Warning {
+        code: "open_edges",
+        message: format!(
+            "{} free edge(s), {:.3} mm, still lie inside the material after stitching (patches {}): the \
+             mid-surface has gaps there",
+            free.open_edges,
+            free.open_length,
+            crate::model::warning::patch_list(open_patches)
+        ),
+        solid: None,
+        faces: Vec::new(),
+    })
 }

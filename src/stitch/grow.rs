@@ -1,0 +1,297 @@
+//! One pass of stitching: per free edge the strip it grows (a joint to its partner, or to the rim), the quads
+//! bridging thickness steps and the notches at corners, all made in one kernel call; then each patch gathered
+//! with its strips and everything fused again and trimmed.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::edges::{open, to_rim};
+use super::joint::{self, Verdict};
+use super::{kept_faces, trim, JointReport, PatchInfo};
+use crate::geom::inside::SolidMesh;
+use crate::kernel::protocol::{CornerRequest, Extended, GatherPart, Gathered, Request, StripRequest};
+use crate::kernel::{Kernel, SidecarError};
+use crate::model::shapes::{EdgeProbe, Fused};
+use crate::trim::Branch;
+
+/// Which free edges a pass grows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Pass {
+    /// Every free edge: joints to partner patches, and edges short of the rim.
+    Joints,
+    /// The free edges left by the joints (an L-joint's overshoot that stayed joined to its patch past a wall's
+    /// end, for one), grown to the rim when it is within reach.
+    Rims,
+}
+
+/// One pass of `stitch` over the free edges `free` of `fused` and their probes (with meetings for a joints
+/// pass): the result fused again, its kept pieces and the branches dropped; None when a rims pass finds
+/// nothing to grow.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn grow<K: Kernel>(
+    kernel: &mut K,
+    fused: &Fused,
+    keep: &[bool],
+    free: &[(usize, usize)],
+    probes: &[EdgeProbe],
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+    fuzzy: f64,
+    pass: Pass,
+    tally: &mut JointTally,
+) -> Result<Option<(Fused, Vec<bool>, Vec<Branch>)>, SidecarError> {
+    let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
+    let patch_of: Vec<usize> = fused.faces.iter().map(|f| f.patch).collect();
+
+    // Per free edge: the strip it grows with its joint key, if any; and the open edges the step search sees.
+    let mut grows: Vec<Option<Planned>> = Vec::new();
+    let mut open_edges: Vec<OpenEdge> = Vec::new();
+    for (k, (&(edge, face), p)) in free.iter().zip(probes).enumerate() {
+        let patch = patch_of[face];
+        let length = fused.edges[edge].length;
+        let verdict = match pass {
+            Pass::Joints => {
+                let open = open(fused, face, p, patches, solids);
+                let info = &patches[patch];
+                let through = |k, length| {
+                    let step = joint::PROBE_STEP * info.thickness;
+                    joint::through_material(p, k, length, step, info.to_mid, |q| solids[info.solid].contains(q))
+                };
+                joint::decide(patch, open, p, &patch_of, &thickness, info.reach, through)
+            }
+            // Only growth to the rim; an edge that found no partner before is not counted again.
+            Pass::Rims => Verdict::Rim,
+        };
+        let grow = match verdict {
+            verdict @ (Verdict::Rim | Verdict::Unresolved) => match to_rim(fused, edge, face, p, patches, solids) {
+                Some(lengths) => Some((
+                    patch,
+                    StripRequest { edge, face, lengths, onto_face: false },
+                    (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
+                    p,
+                )),
+                None => {
+                    // A rim edge may still be the thicker level of a step: the thinner level's edge lies on the
+                    // boundary past it, so its outside reads as out of the material.
+                    let open = verdict == Verdict::Unresolved;
+                    if pass == Pass::Joints {
+                        open_edges.push(OpenEdge { free: k, patch, probe: p, length, nearest: f64::INFINITY, open });
+                    }
+                    None
+                }
+            },
+            Verdict::Extend(x) => {
+                open_edges.push(OpenEdge { free: k, patch, probe: p, length, nearest: x.distance, open: true });
+                let mut ids = vec![patch + 1, x.partner + 1];
+                ids.sort_unstable();
+                Some((
+                    patch,
+                    StripRequest { edge, face, lengths: x.lengths, onto_face: x.kind == joint::JointKind::T },
+                    (ids, x.kind.name(), "extended"),
+                    p,
+                ))
+            }
+        };
+        grows.push(grow);
+    }
+    let (steps, bridged) = step_quads(&open_edges, patches, tally);
+    let planned: Vec<Planned> =
+        grows.into_iter().enumerate().filter(|(k, _)| !bridged.contains(k)).filter_map(|(_, g)| g).collect();
+    if pass == Pass::Rims && planned.is_empty() && steps.is_empty() {
+        return Ok(None);
+    }
+    // (patch, index among the faces of the extension's handle) of each made strip and corner.
+    let mut strips: Vec<(usize, usize)> = Vec::new();
+    let mut extended_handle = None;
+    if !planned.is_empty() || !steps.is_empty() {
+        let corners = corners(&planned, fuzzy);
+        let extended: Extended = kernel.call(&Request::ExtendEdges {
+            handle: fused.handle,
+            strips: planned.iter().map(|(_, s, _, _)| s.clone()).collect(),
+            corners: corners.iter().map(|(_, c)| c).chain(steps.iter().map(|(_, c, _, _)| c)).cloned().collect(),
+        })?;
+        for ((patch, request, key, _), made) in planned.into_iter().zip(&extended.strips) {
+            let length = fused.edges[request.edge].length;
+            if made.area.is_some() {
+                strips.push((patch, strips.len()));
+                tally.add(key, length);
+            } else {
+                tally.add((key.0, key.1, "kernel_failed"), length);
+            }
+        }
+        for (&(patch, _), made) in corners.iter().zip(&extended.corners) {
+            if made.area.is_some() {
+                strips.push((patch, strips.len()));
+            }
+        }
+        for ((patch, _, key, lengths), made) in steps.into_iter().zip(&extended.corners[corners.len()..]) {
+            let status = if made.area.is_some() {
+                strips.push((patch, strips.len()));
+                key.2
+            } else {
+                "kernel_failed"
+            };
+            for length in lengths {
+                tally.add((key.0.clone(), key.1, status), length);
+            }
+        }
+        extended_handle = Some(extended.handle);
+    }
+
+    // One argument per patch: its kept pieces and its strips (each list ascending, as found).
+    let mut pieces_of: Vec<Vec<usize>> = vec![Vec::new(); patches.len()];
+    for f in kept_faces(keep) {
+        pieces_of[patch_of[f]].push(f);
+    }
+    let mut strips_of: Vec<Vec<usize>> = vec![Vec::new(); patches.len()];
+    for &(p, j) in &strips {
+        strips_of[p].push(j);
+    }
+    let mut order: Vec<usize> = Vec::new();
+    let mut handles = Vec::new();
+    for (k, (pieces, own)) in pieces_of.into_iter().zip(strips_of).enumerate() {
+        let mut parts = Vec::new();
+        // Only a patch with strips has faces to merge.
+        let unify = (!own.is_empty()).then_some(fuzzy);
+        if !pieces.is_empty() {
+            parts.push(GatherPart { handle: fused.handle, faces: pieces });
+        }
+        if let (Some(handle), false) = (extended_handle, own.is_empty()) {
+            parts.push(GatherPart { handle, faces: own });
+        }
+        if parts.is_empty() {
+            continue;
+        }
+        let gathered: Gathered = kernel.call(&Request::Gather { parts, unify })?;
+        order.push(k);
+        handles.push(gathered.handle);
+    }
+    let mut again = kernel.fuse(handles, fuzzy, true)?;
+    for face in &mut again.faces {
+        face.patch = order[face.patch];
+    }
+    let (keep, branches) = trim(&again, patches, solids);
+    Ok(Some((again, keep, branches)))
+}
+
+/// A free edge for the step search: its index among the free edges, patch, probe, length, how far away the
+/// partner its rays found is (infinite for none), and whether it is open (else on the rim).
+struct OpenEdge<'a> {
+    free: usize,
+    patch: usize,
+    probe: &'a EdgeProbe,
+    length: f64,
+    nearest: f64,
+    open: bool,
+}
+
+/// The quads bridging open edges across thickness steps (`joint::step_bridges`), each owned by its `owner`
+/// edge's patch, with its joint key and the lengths of both edges; and the free edges (indices) bridged. The
+/// edges that found no partner and no bridge are tallied as having no partner.
+fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) -> (Vec<StepQuad>, BTreeSet<usize>) {
+    let edges: Vec<joint::LooseEdge> = open
+        .iter()
+        .map(|e| {
+            let p = e.probe;
+            let mid = p.points.len() / 2;
+            joint::LooseEdge {
+                patch: e.patch,
+                wall: patches[e.patch].wall,
+                thickness: patches[e.patch].thickness,
+                nearest: e.nearest,
+                open: e.open,
+                points: p.points.clone(),
+                normal: p.normals[mid],
+                outward: p.outward[mid],
+            }
+        })
+        .collect();
+    let mut bridged = vec![false; open.len()];
+    let mut out = Vec::new();
+    for joint::StepBridge { owner, other, quad, normal } in joint::step_bridges(&edges) {
+        (bridged[owner], bridged[other]) = (true, true);
+        let mut ids = vec![edges[owner].patch + 1, edges[other].patch + 1];
+        ids.sort_unstable();
+        let request = CornerRequest { points: quad, normal };
+        let lengths = [open[owner].length, open[other].length];
+        out.push((edges[owner].patch, request, (ids, joint::JointKind::Step.name(), "extended"), lengths));
+    }
+    for (e, _) in open.iter().zip(&bridged).filter(|(e, &b)| !b && e.open && e.nearest.is_infinite()) {
+        tally.add((vec![e.patch + 1], "none", "no_partner"), e.length);
+    }
+    let free = open.iter().zip(&bridged).filter(|(_, &b)| b).map(|(e, _)| e.free).collect();
+    (out, free)
+}
+
+/// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
+/// and end both growing into the walls they meet): a quad v, a, c, b fills it, where a and b are the strips'
+/// far corners over v and c = a + b - v. Edges continuing each other (outward directions within 10 degrees)
+/// need none; at a reflex corner the strips overlap instead.
+fn corners(planned: &[Planned], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
+    let same_point = (fuzzy * 10.0).max(1e-9);
+    let continuing = 10f64.to_radians().cos();
+    // (point, direction along the edge into that end, outward, length, normal) at both ends of a strip.
+    let ends = |s: &StripRequest, p: &EdgeProbe| {
+        let n = p.points.len();
+        [
+            (p.points[0], (p.points[0] - p.points[1]).normalize_or_zero(), p.outward[0], s.lengths[0], p.normals[0]),
+            (
+                p.points[n - 1],
+                (p.points[n - 1] - p.points[n - 2]).normalize_or_zero(),
+                p.outward[n - 1],
+                s.lengths[n - 1],
+                p.normals[n - 1],
+            ),
+        ]
+    };
+    let mut out = Vec::new();
+    for (i, (patch, a, _, pa)) in planned.iter().enumerate() {
+        for (b, pb) in planned[i + 1..].iter().filter(|(_, b, _, _)| b.face == a.face).map(|(_, b, _, p)| (b, p)) {
+            for &(va, along_a, out_a, len_a, normal) in &ends(a, pa) {
+                for &(vb, along_b, out_b, len_b, _) in &ends(b, pb) {
+                    let convex = out_b.dot(along_a) > 0.0 && out_a.dot(along_b) > 0.0;
+                    if va.distance(vb) > same_point || out_a.dot(out_b) > continuing || !convex {
+                        continue;
+                    }
+                    let far_a = va + out_a * len_a;
+                    let far_b = va + out_b * len_b;
+                    out.push((*patch, CornerRequest { points: [va, far_a, far_a + far_b - va, far_b], normal }));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Patch ids (sorted), kind, status.
+type JointKey = (Vec<usize>, &'static str, &'static str);
+
+/// A strip to grow: its patch, the request, its joint key and the probe of its edge.
+type Planned<'a> = (usize, StripRequest, JointKey, &'a EdgeProbe);
+
+/// A step bridge: the patch owning it, the quad, its joint key and the lengths of its two edges.
+type StepQuad = (usize, CornerRequest, JointKey, [f64; 2]);
+
+/// Edges and length per joint key, in key order (deterministic).
+#[derive(Default)]
+pub(super) struct JointTally(BTreeMap<JointKey, (usize, f64)>);
+
+impl JointTally {
+    pub(super) fn add(&mut self, key: JointKey, length: f64) {
+        let entry = self.0.entry(key).or_default();
+        entry.0 += 1;
+        entry.1 += length;
+    }
+
+    pub(super) fn reports(&self) -> Vec<JointReport> {
+        self.0
+            .iter()
+            .map(|((patches, kind, status), &(edges, length))| JointReport {
+                patches: patches.clone(),
+                kind,
+                status,
+                edges,
+                length,
+            })
+            .collect()
+    }
+}
