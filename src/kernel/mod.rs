@@ -2,6 +2,8 @@
 
 pub mod client;
 pub mod convert;
+#[cfg(test)]
+pub mod fake;
 pub mod process;
 pub mod protocol;
 pub mod python;
