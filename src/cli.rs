@@ -10,10 +10,10 @@ use crate::error::Error;
 use crate::exit::Exit;
 use crate::load::{self, MeshRequest};
 use crate::model::face_graph::FaceGraph;
+use crate::model::params::Position;
 use crate::output::inspect::{self, SolidSummary};
 use crate::pairing::driver::{self, PairingParams, SolidPairing};
 use crate::pairing::features::LimitArgs;
-use crate::patch::plan::Position;
 
 /// Mid-surface generator for thin-walled CAD parts: a STEP solid in, a mid-surface STEP with a thickness per
 /// patch out.
@@ -90,8 +90,8 @@ pub struct RunCli {
     pub preview: Option<PathBuf>,
     /// Where the patches lie through their walls: mid-way, or on the top or bottom skin with the thickness
     /// kept (top: the skin of each pair's reference face, the face normal pointing away from the material).
-    #[arg(long, value_enum, default_value_t = Position::Mid)]
-    pub position: Position,
+    #[arg(long, value_enum, default_value_t = PositionArg::Mid)]
+    pub position: PositionArg,
     /// Leave the time per stage out of the report, so that two runs give byte-identical reports.
     #[arg(long)]
     pub no_timings: bool,
@@ -172,7 +172,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             csv: r.csv,
             preview: r.preview,
             params: r.pairing.params(),
-            position: r.position,
+            position: r.position.into(),
             timings: !r.no_timings,
         }),
     }
@@ -236,4 +236,22 @@ fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exi
     };
     print(&text)?;
     Ok(Exit::Clean)
+}
+
+/// `--position` as clap parses it; the stages take [`Position`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PositionArg {
+    Mid,
+    Top,
+    Bottom,
+}
+
+impl From<PositionArg> for Position {
+    fn from(p: PositionArg) -> Position {
+        match p {
+            PositionArg::Mid => Position::Mid,
+            PositionArg::Top => Position::Top,
+            PositionArg::Bottom => Position::Bottom,
+        }
+    }
 }

@@ -8,13 +8,14 @@ use crate::error::Error;
 use crate::exit::Exit;
 use crate::geom::inside::SolidMesh;
 use crate::load::{self, MeshRequest};
+use crate::model::params::Position;
 use crate::model::tolerance;
 use crate::output::assemble::{self, Asked};
 use crate::output::files::Files;
 use crate::output::report::Timings;
 use crate::output::shells;
 use crate::pairing::driver::{pair_part, PairingParams};
-use crate::patch::{make::make_patches, plan::Position};
+use crate::patch::make::make_patches;
 use crate::{stitch, trim};
 
 pub struct RunArgs {

@@ -1,6 +1,8 @@
-//! Data shared between the stages: the face graph of a solid and the tolerances derived from it.
+//! Data shared between the stages: the face graph of a solid, the tolerances derived from it, the run's
+//! parameters, the shapes the kernel returns, the warnings.
 
 pub mod face_graph;
+pub mod params;
 pub mod shapes;
 pub mod tolerance;
 pub mod warning;

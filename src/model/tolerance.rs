@@ -70,7 +70,7 @@ pub fn on_rim(thickness: f64, mesh_tolerance: f64) -> f64 {
 }
 
 /// The share of a wall's thickness within which a free edge is on the rim (`on_rim`); a thickness step no
-/// higher than this share of the thinner wall is not laid down into a ramp (`joint::step_bridges`).
+/// higher than this share of the thinner wall is not laid down into a ramp (`stitch::bridge::step_bridges`).
 pub const RIM_SHARE: f64 = 0.1;
 
 /// The fuzzy value of the fuses of a whole part (the patches of all its solids at once): the smallest of its

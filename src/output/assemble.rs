@@ -10,10 +10,10 @@ use super::shells::{written_area, Assembled};
 use super::topology;
 use crate::load::Part;
 use crate::model::face_graph::FaceGraph;
+use crate::model::params::Position;
 use crate::model::shapes::Fused;
 use crate::pairing::driver::{PairingParams, SolidPairing};
 use crate::patch::make::Made;
-use crate::patch::plan::Position;
 use crate::stitch::Outcome;
 
 /// What the run was asked.
@@ -52,7 +52,8 @@ pub fn report(
             faces: Vec::new(),
         });
     }
-    let topology = topology::summarise(&fused, &keep, &shells, sets, &patches, &joints, free);
+    let topology_patches = patches.iter().map(PatchReport::topology).collect();
+    let topology = topology::summarise(&fused, &keep, &shells, sets, topology_patches, &joints, free);
     Report {
         report_version: REPORT_VERSION,
         midsurf_version: env!("CARGO_PKG_VERSION"),

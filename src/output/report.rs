@@ -2,11 +2,11 @@
 
 use serde::Serialize;
 
+use super::round;
+use super::topology::{Topology, TopologyPatch};
 use crate::model::face_graph::FaceId;
 use crate::model::tolerance::Tolerances;
 pub use crate::model::warning::Warning;
-use crate::output::topology::round;
-use crate::output::topology::Topology;
 use crate::pairing::estimate::TMaxEstimate;
 use crate::pairing::{FaceRole, PairGroup, PairKind, Thickness};
 use crate::stitch::{FreeEdges, JointReport};
@@ -43,7 +43,7 @@ pub struct Parameters {
     pub t_max: Option<f64>,
     pub draft_max_deg: f64,
     /// Where the patches lie through their walls: mid, top (the reference face's skin) or bottom.
-    pub position: crate::patch::plan::Position,
+    pub position: crate::model::params::Position,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -114,6 +114,20 @@ pub struct PatchReport {
     pub area: f64,
     /// Faces of the patch in the output.
     pub faces: usize,
+}
+
+impl PatchReport {
+    /// The patch as the topology summary lists it, rounded for stable snapshots.
+    pub fn topology(&self) -> TopologyPatch {
+        TopologyPatch {
+            id: self.id,
+            kind: self.kind,
+            source_faces: self.source_faces.clone(),
+            thickness: round(self.thickness.mean, 3),
+            area: round(self.area, 1),
+            faces: self.faces,
+        }
+    }
 }
 
 #[derive(Debug, Clone, Serialize)]

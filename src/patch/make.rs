@@ -1,11 +1,12 @@
 //! Making the planned mid-patches in the kernel: one `make_patch` request per plan, clipped to the plan's
 //! partners, with the loops of suppressed features filled.
 
-use super::plan::{plan_patches, PatchPlan, PlanNote, Position};
+use super::plan::{plan_patches, PatchPlan, PlanNote};
 use crate::kernel::protocol::{Clip, MadePatch, Request};
 use crate::kernel::{Kernel, SidecarError};
 use crate::load::Part;
 use crate::model::face_graph::FaceId;
+use crate::model::params::Position;
 use crate::model::shapes::Handle;
 use crate::model::warning::Warning;
 use crate::pairing::driver::SolidPairing;

@@ -4,6 +4,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use super::bridge;
 use super::edges::{open, to_rim};
 use super::joint::{self, Verdict};
 use super::{kept_faces, trim, JointReport, PatchInfo};
@@ -184,16 +185,16 @@ struct OpenEdge<'a> {
     open: bool,
 }
 
-/// The quads bridging open edges across thickness steps (`joint::step_bridges`), each owned by its `owner`
+/// The quads bridging open edges across thickness steps (`bridge::step_bridges`), each owned by its `owner`
 /// edge's patch, with its joint key and the lengths of both edges; and the free edges (indices) bridged. The
 /// edges that found no partner and no bridge are tallied as having no partner.
 fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) -> (Vec<StepQuad>, BTreeSet<usize>) {
-    let edges: Vec<joint::LooseEdge> = open
+    let edges: Vec<bridge::LooseEdge> = open
         .iter()
         .map(|e| {
             let p = e.probe;
             let mid = p.points.len() / 2;
-            joint::LooseEdge {
+            bridge::LooseEdge {
                 patch: e.patch,
                 wall: patches[e.patch].wall,
                 thickness: patches[e.patch].thickness,
@@ -207,7 +208,7 @@ fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) 
         .collect();
     let mut bridged = vec![false; open.len()];
     let mut out = Vec::new();
-    for joint::StepBridge { owner, other, quad, normal } in joint::step_bridges(&edges) {
+    for bridge::StepBridge { owner, other, quad, normal } in bridge::step_bridges(&edges) {
         (bridged[owner], bridged[other]) = (true, true);
         let mut ids = vec![edges[owner].patch + 1, edges[other].patch + 1];
         ids.sort_unstable();

@@ -1,6 +1,7 @@
 //! Extend and stitch (Sheen et al. 5.4): grow the open free edges of the trimmed patches up to their partners,
 //! fuse again so every joint becomes a shared edge, and trim the overshoot.
 
+mod bridge;
 mod edges;
 mod grow;
 pub mod joint;

@@ -3,10 +3,10 @@
 
 use super::PatchInfo;
 use crate::load::Part;
+use crate::model::params::Position;
 use crate::model::tolerance;
 use crate::pairing::driver::SolidPairing;
 use crate::patch::make::Made;
-use crate::patch::plan::Position;
 use crate::trim::branch_limit;
 
 /// Per made patch (in order), what stitching needs to know of it.
