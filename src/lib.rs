@@ -11,17 +11,20 @@
 //! Rust decides (pairing, classification, joints); the OCCT sidecar executes kernel operations ([`kernel`]).
 //! [`geom`] holds the small geometric computations done in Rust.
 
+// Public: what main.rs (cli, exit) and the pairing benchmark (model, pairing, synthetic) use.
 pub mod cli;
-pub mod error;
+pub(crate) mod error;
 pub mod exit;
-pub mod geom;
-pub mod kernel;
-pub mod load;
+pub(crate) mod geom;
+pub(crate) mod kernel;
+pub(crate) mod load;
 pub mod model;
-pub mod output;
+pub(crate) mod output;
 pub mod pairing;
-pub mod patch;
-pub mod run;
-pub mod stitch;
+pub(crate) mod patch;
+pub(crate) mod run;
+pub(crate) mod stitch;
+/// Hand-made face graphs for unit tests and the pairing benchmark (`--features synthetic`).
+#[cfg(any(test, feature = "synthetic"))]
 pub mod synthetic;
-pub mod trim;
+pub(crate) mod trim;

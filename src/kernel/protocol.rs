@@ -79,6 +79,8 @@ pub enum Request {
     Hello {
         protocol: u32,
     },
+    /// A liveness check midsurf itself does not send (the client's tests and the sidecar's do).
+    #[allow(dead_code)]
     Ping {},
     LoadStep {
         path: String,
@@ -141,6 +143,8 @@ pub enum Request {
         #[serde(skip_serializing_if = "Option::is_none")]
         preview: Option<String>,
     },
+    /// Frees kernel shapes; midsurf runs one part per process and sends none.
+    #[allow(dead_code)]
     Free {
         handles: Vec<u64>,
     },

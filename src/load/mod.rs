@@ -1,6 +1,6 @@
 //! Loading a part: checks on the input file, then `load_step` and `describe` of every solid in the sidecar.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::error::Error;
 use crate::kernel::protocol::{Loaded, Request};
@@ -16,7 +16,6 @@ pub struct Solid {
 }
 
 pub struct Part {
-    pub path: PathBuf,
     pub solids: Vec<Solid>,
 }
 
@@ -78,5 +77,5 @@ pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Par
         }
         solids.push(Solid { handle: solid.handle, graph, mesh_tolerance });
     }
-    Ok(Part { path: path.to_path_buf(), solids })
+    Ok(Part { solids })
 }

@@ -2,7 +2,7 @@
 //! parameters, the shapes the kernel returns, the warnings.
 
 pub mod face_graph;
-pub mod params;
-pub mod shapes;
+pub(crate) mod params;
+pub(crate) mod shapes;
 pub mod tolerance;
-pub mod warning;
+pub(crate) mod warning;
