@@ -164,7 +164,7 @@ fn hole_diameter(graph: &FaceGraph, region: &BTreeSet<FaceId>, tolerance: f64) -
             None => first = Some((origin, axis, radius)),
             Some((o, a, r)) => {
                 let off_axis = (origin - o).reject_from_normalized(a).length();
-                if (radius - r).abs() > tolerance || off_axis > tolerance || a.cross(axis).length() > 1e-6 {
+                if (radius - r).abs() > tolerance || off_axis > tolerance || a.cross(axis).length() > SAME_AXIS_SINE {
                     return None;
                 }
             }
@@ -204,6 +204,10 @@ fn chamfer_width(graph: &FaceGraph, roles: &[FaceRole], face: FaceId) -> Option<
 
 /// Every small feature of a solid, given the roles of a first pairing with all faces pairable. `tolerance`
 /// says when two radii or axes are the same. Sorted by kind, then faces.
+/// Two bores' axes are parallel when the sine between them is under this: the faces of one drilled hole share
+/// their axis exactly, up to the float noise of the STEP file.
+const SAME_AXIS_SINE: f64 = 1e-6;
+
 pub fn recognise(graph: &FaceGraph, roles: &[FaceRole], limits: &Limits, tolerance: f64) -> Vec<Feature> {
     let mut features: Vec<Feature> = Vec::new();
     let mut taken: BTreeSet<FaceId> = BTreeSet::new();

@@ -38,6 +38,15 @@ const STEP_SPAN_SHARE: f64 = 0.99;
 /// that piece is dropped as an overshoot, and gives a 0.5 mm step a slope of 27 degrees on a 2 mm wall.
 pub const RAMP_RUN: f64 = 0.5;
 
+/// An edge is straight when its samples lie within this share of its chord (with a floor for a zero chord)
+/// from it: a bridge is a flat quad between two straight lines.
+const STRAIGHT_SHARE: f64 = 1e-3;
+const STRAIGHT_FLOOR: f64 = 1e-9;
+
+/// Two edges side by side share a stretch only when it is longer than this share of the thin edge: touching
+/// end to end is no overlap.
+const SHARED_STRETCH_SHARE: f64 = 1e-6;
+
 /// Two bridges on one edge may overlap by this share of the newer one's stretch (they meet end to end).
 const STRETCH_SLACK: f64 = 1e-3;
 
@@ -69,7 +78,10 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
         let (a, b) = (*e.points.first()?, *e.points.last()?);
         let length = a.distance(b);
         let u = (b - a).normalize_or_zero();
-        let straight = e.points.iter().all(|p| (*p - a).reject_from_normalized(u).length() <= 1e-3 * length.max(1e-9));
+        let straight = e
+            .points
+            .iter()
+            .all(|p| (*p - a).reject_from_normalized(u).length() <= STRAIGHT_SHARE * length.max(STRAIGHT_FLOOR));
         (length > 0.0 && straight).then_some((a, u, length))
     };
     let lines: Vec<Option<(DVec3, DVec3, f64)>> = edges.iter().map(line).collect();
@@ -105,7 +117,7 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
             }
             let (b0, b1) = ((b - a).dot(u), (b - a).dot(u) + lb * u.dot(v).signum());
             let (s0, s1) = (b0.min(b1).max(0.0), b0.max(b1).min(la));
-            if s1 - s0 <= 1e-6 * la {
+            if s1 - s0 <= SHARED_STRETCH_SHARE * la {
                 continue;
             }
             // A ramp only where the thin edge spans the whole thick edge, over at least the larger thickness: the

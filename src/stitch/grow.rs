@@ -227,9 +227,16 @@ fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) 
 /// and end both growing into the walls they meet): a quad v, a, c, b fills it, where a and b are the strips'
 /// far corners over v and c = a + b - v. Edges continuing each other (outward directions within 10 degrees)
 /// need none; at a reflex corner the strips overlap instead.
+/// Two strip ends are at one corner within this many fuzzy tolerances (the fuse merges points that close), and
+/// never less than this floor (a fuzzy value of 0).
+const CORNER_SAME_POINT_FUZZY: f64 = 10.0;
+const CORNER_SAME_POINT_MIN: f64 = 1e-9;
+/// Edges whose outward directions are within this angle (degrees) continue each other: no notch between them.
+const CORNER_CONTINUING_DEG: f64 = 10.0;
+
 fn corners(planned: &[Planned], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
-    let same_point = (fuzzy * 10.0).max(1e-9);
-    let continuing = 10f64.to_radians().cos();
+    let same_point = (fuzzy * CORNER_SAME_POINT_FUZZY).max(CORNER_SAME_POINT_MIN);
+    let continuing = CORNER_CONTINUING_DEG.to_radians().cos();
     // (point, direction along the edge into that end, outward, length, normal) at both ends of a strip.
     let ends = |s: &StripRequest, p: &EdgeProbe| {
         let n = p.points.len();
