@@ -4,10 +4,10 @@
 use std::time::Instant;
 
 use glam::DVec3;
-use midsurf::face_graph::FaceGraph;
+use midsurf::model::face_graph::FaceGraph;
+use midsurf::model::tolerance::Tolerances;
 use midsurf::pairing;
 use midsurf::synthetic;
-use midsurf::tolerance::Tolerances;
 
 fn plate_field(k: usize) -> FaceGraph {
     let mut faces = Vec::with_capacity(6 * k * k);

@@ -8,12 +8,12 @@ use serde::Serialize;
 
 use crate::error::Error;
 use crate::exit::Exit;
-use crate::face_graph::FaceGraph;
-use crate::features::LimitArgs;
-use crate::inspect::{self, SolidSummary};
-use crate::pairs_report::{self, PairingParams, SolidPairing};
-use crate::part::{self, MeshRequest};
-use crate::patch::plan::Position;
+use crate::load::{self, MeshRequest};
+use crate::model::face_graph::FaceGraph;
+use crate::model::params::Position;
+use crate::output::inspect::{self, SolidSummary};
+use crate::pairing::driver::{self, PairingParams, SolidPairing};
+use crate::pairing::features::LimitArgs;
 
 /// Mid-surface generator for thin-walled CAD parts: a STEP solid in, a mid-surface STEP with a thickness per
 /// patch out.
@@ -90,8 +90,8 @@ pub struct RunCli {
     pub preview: Option<PathBuf>,
     /// Where the patches lie through their walls: mid-way, or on the top or bottom skin with the thickness
     /// kept (top: the skin of each pair's reference face, the face normal pointing away from the material).
-    #[arg(long, value_enum, default_value_t = Position::Mid)]
-    pub position: Position,
+    #[arg(long, value_enum, default_value_t = PositionArg::Mid)]
+    pub position: PositionArg,
     /// Leave the time per stage out of the report, so that two runs give byte-identical reports.
     #[arg(long)]
     pub no_timings: bool,
@@ -106,7 +106,7 @@ pub struct PairingArgs {
     #[arg(long, value_parser = positive_mm)]
     pub t_max: Option<f64>,
     /// Largest draft angle of a wall side in degrees; draft pairs differ by up to twice this.
-    #[arg(long, default_value_t = crate::tolerance::DEFAULT_DRAFT_MAX_DEG, value_parser = draft_degrees)]
+    #[arg(long, default_value_t = crate::model::tolerance::DEFAULT_DRAFT_MAX_DEG, value_parser = draft_degrees)]
     pub draft_max: f64,
     /// Fillets and rounds up to this radius, and chamfers up to this width (mm), are suppressed: they do not
     /// pair, the joints bridge them [default: 2 x t_max].
@@ -172,7 +172,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             csv: r.csv,
             preview: r.preview,
             params: r.pairing.params(),
-            position: r.position,
+            position: r.position.into(),
             timings: !r.no_timings,
         }),
     }
@@ -191,8 +191,8 @@ struct SolidJson<'a> {
 }
 
 fn inspect_command(path: PathBuf, json: bool, mesh: bool) -> Result<Exit, Error> {
-    let mut sidecar = part::start_sidecar(&path)?;
-    let part = part::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: None })?;
+    let mut sidecar = load::start_sidecar(&path)?;
+    let part = load::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: None })?;
     sidecar.shutdown();
     let file = path.display().to_string();
     let text = if json {
@@ -220,20 +220,38 @@ struct PairsJson<'a> {
 }
 
 fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exit, Error> {
-    let mut sidecar = part::start_sidecar(&path)?;
-    let part = part::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
+    let mut sidecar = load::start_sidecar(&path)?;
+    let part = load::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
     sidecar.shutdown();
-    let solids: Vec<SolidPairing> = pairs_report::pair_part(&part, params);
+    let solids: Vec<SolidPairing> = driver::pair_part(&part, params);
     let file = path.display().to_string();
     let text = if json {
         serde_json::to_string_pretty(&PairsJson { file, solids: &solids }).expect("pairings always serialise") + "\n"
     } else {
         let mut out = format!("{file}: {} solid(s)\n", solids.len());
         for (i, (solid, sp)) in part.solids.iter().zip(&solids).enumerate() {
-            pairs_report::render(&mut out, i, &solid.graph, sp);
+            crate::output::pairs_table::render(&mut out, i, &solid.graph, sp);
         }
         out
     };
     print(&text)?;
     Ok(Exit::Clean)
+}
+
+/// `--position` as clap parses it; the stages take [`Position`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PositionArg {
+    Mid,
+    Top,
+    Bottom,
+}
+
+impl From<PositionArg> for Position {
+    fn from(p: PositionArg) -> Position {
+        match p {
+            PositionArg::Mid => Position::Mid,
+            PositionArg::Top => Position::Top,
+            PositionArg::Bottom => Position::Bottom,
+        }
+    }
 }

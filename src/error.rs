@@ -3,7 +3,7 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use crate::sidecar::SidecarError;
+use crate::kernel::SidecarError;
 
 #[derive(Debug)]
 pub enum Error {

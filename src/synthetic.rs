@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use crate::face_graph::{Bbox, Convexity, Edge, Face, FaceGraph, Mesh, Surface};
+use crate::model::face_graph::{Bbox, Convexity, Edge, Face, FaceGraph, Mesh, Surface};
 
 /// A face from `eval(u, v) -> (point, outward normal)` over [0,1]^2 meshed with `n x n` quads.
 pub fn face(surface: Surface, n: usize, eval: impl Fn(f64, f64) -> (DVec3, DVec3)) -> Face {

@@ -7,7 +7,7 @@ use glam::DVec3;
 use rstar::{RTree, RTreeObject, AABB};
 
 use super::ray::hit_triangle;
-use crate::face_graph::FaceGraph;
+use crate::model::face_graph::FaceGraph;
 
 struct Triangle {
     corners: [DVec3; 3],

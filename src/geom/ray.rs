@@ -2,6 +2,12 @@
 
 use glam::DVec3;
 
+/// A ray is parallel to a triangle's plane when the determinant is under this share of the triangle's size
+/// squared.
+const GRAZING: f64 = 1e-12;
+/// Barycentric slack: a ray through a shared edge of two triangles hits at least one of them despite round-off.
+const EDGE_SLACK: f64 = 1e-9;
+
 /// Distance along `dir` (unit) from `origin` to the triangle, if the ray hits it in front of the origin.
 pub fn hit_triangle(origin: DVec3, dir: DVec3, tri: [DVec3; 3]) -> Option<f64> {
     let e1 = tri[1] - tri[0];
@@ -9,18 +15,18 @@ pub fn hit_triangle(origin: DVec3, dir: DVec3, tri: [DVec3; 3]) -> Option<f64> {
     let p = dir.cross(e2);
     let det = e1.dot(p);
     // Relative to the triangle's size: a ray grazing the triangle's plane has no stable hit.
-    if det.abs() <= 1e-12 * e1.length_squared().max(e2.length_squared()) {
+    if det.abs() <= GRAZING * e1.length_squared().max(e2.length_squared()) {
         return None;
     }
     let inv = 1.0 / det;
     let s = origin - tri[0];
     let u = s.dot(p) * inv;
-    if !(-1e-9..=1.0 + 1e-9).contains(&u) {
+    if !(-EDGE_SLACK..=1.0 + EDGE_SLACK).contains(&u) {
         return None;
     }
     let q = s.cross(e1);
     let v = dir.dot(q) * inv;
-    if v < -1e-9 || u + v > 1.0 + 1e-9 {
+    if v < -EDGE_SLACK || u + v > 1.0 + EDGE_SLACK {
         return None;
     }
     let t = e2.dot(q) * inv;

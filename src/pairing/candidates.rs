@@ -3,7 +3,7 @@
 
 use rstar::{RTree, RTreeObject, AABB};
 
-use crate::face_graph::{FaceGraph, FaceId};
+use crate::model::face_graph::{FaceGraph, FaceId};
 
 struct FaceBox {
     face: FaceId,

@@ -5,9 +5,9 @@ use glam::DVec3;
 
 use super::overlap::{self, Overlap};
 use super::{Pair, PairKind, Rejection, Thickness};
-use crate::face_graph::{Convexity, Face, FaceGraph, FaceId, Surface};
 use crate::geom::angle_between;
-use crate::tolerance::Tolerances;
+use crate::model::face_graph::{Convexity, Face, FaceGraph, FaceId, Surface};
+use crate::model::tolerance::Tolerances;
 
 /// Tests whether faces `a` and `b` are the two skins of one wall.
 pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> Result<Pair, Rejection> {
@@ -173,7 +173,7 @@ fn all_planar(graph: &FaceGraph, faces: &[FaceId]) -> bool {
     faces.iter().all(|&f| graph.faces[f].surface.is_plane())
 }
 
-fn mesh(face: &Face) -> Result<&crate::face_graph::Mesh, Rejection> {
+fn mesh(face: &Face) -> Result<&crate::model::face_graph::Mesh, Rejection> {
     // Without a mesh no overlap can be measured: the faces cannot be shown to overlap.
     face.mesh.as_ref().ok_or(Rejection::Overlap { share: 0.0, limit: 0.0 })
 }

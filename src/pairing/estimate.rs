@@ -8,8 +8,8 @@
 use serde::Serialize;
 
 use super::{candidates, criteria, PairKind};
-use crate::face_graph::FaceGraph;
-use crate::tolerance::Tolerances;
+use crate::model::face_graph::FaceGraph;
+use crate::model::tolerance::Tolerances;
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ThicknessCluster {
@@ -34,10 +34,14 @@ const DOMINANT_FACTOR: f64 = 1.5;
 const GAUGE_FACTOR: f64 = 1.2;
 const SIGNIFICANT_SHARE: f64 = 0.10;
 
+/// The smallest extent of the part bounds the search with this relative slack, so that a wall as thick as the
+/// part (a plain plate) still pairs despite float noise in its box.
+const EXTENT_SLACK: f64 = 1e-6;
+
 pub fn estimate_t_max(graph: &FaceGraph, draft_max: f64) -> TMaxEstimate {
     let wall = graph.thickness_estimate();
     let smallest_extent = graph.bbox.size().min_element();
-    let bound = (4.0 * wall).min(smallest_extent * (1.0 + 1e-6));
+    let bound = (4.0 * wall).min(smallest_extent * (1.0 + EXTENT_SLACK));
     let tol = Tolerances::new(graph.bbox.diagonal(), bound, draft_max);
     let mut samples: Vec<(f64, f64)> = candidates::candidate_pairs(graph, bound)
         .into_iter()

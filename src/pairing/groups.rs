@@ -4,7 +4,7 @@
 use serde::Serialize;
 
 use super::{NearMiss, Pair, PairKind, Thickness};
-use crate::face_graph::{FaceGraph, FaceId};
+use crate::model::face_graph::{FaceGraph, FaceId};
 
 /// The two skins of a wall; `A` holds the group's lowest face id.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]

@@ -4,16 +4,18 @@
 //! by the criteria of its surface kinds (`criteria`); accepted pairs are grouped one-to-many and every face
 //! gets a role (`groups`). The default t_max is estimated from the part (`estimate`).
 
-pub mod candidates;
-pub mod criteria;
-pub mod estimate;
-pub mod groups;
-pub mod overlap;
+pub(crate) mod candidates;
+pub(crate) mod criteria;
+pub(crate) mod driver;
+pub(crate) mod estimate;
+pub(crate) mod features;
+pub(crate) mod groups;
+pub(crate) mod overlap;
 
 use serde::Serialize;
 
-use crate::face_graph::{FaceGraph, FaceId};
-use crate::tolerance::Tolerances;
+use crate::model::face_graph::{FaceGraph, FaceId};
+use crate::model::tolerance::Tolerances;
 
 pub use groups::{FaceRole, PairGroup, Side};
 

@@ -7,9 +7,9 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::face_graph::{Face, Mesh};
 use crate::geom::clip::{signed_area, soup_overlap};
 use crate::geom::{plane_basis, ray::hit_triangle};
+use crate::model::face_graph::{Face, Mesh};
 
 /// The mapped region where two faces overlap.
 #[derive(Debug, Clone, Copy, PartialEq)]

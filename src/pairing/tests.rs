@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use super::*;
-use crate::face_graph::{Convexity, Face};
+use crate::model::face_graph::{Convexity, Face};
 use crate::synthetic::{self, cone, cylinder, rect, sphere, torus};
 
 const T_MAX: f64 = 3.0;
@@ -201,7 +201,7 @@ fn coaxial_cones_with_the_same_half_angle() {
 
 /// A wavy sheet z = base + 2 sin(x/10) over [0,60]x[0,40]; `outward` up or down.
 fn wavy(base: f64, up: bool) -> Face {
-    crate::synthetic::face(crate::face_graph::Surface::Bspline, 30, |u, v| {
+    crate::synthetic::face(crate::model::face_graph::Surface::Bspline, 30, |u, v| {
         let (x, y) = (60.0 * u, 40.0 * v);
         let z = base + 2.0 * (x / 10.0).sin();
         let n = DVec3::new(-0.2 * (x / 10.0).cos(), 0.0, 1.0).normalize();
@@ -219,7 +219,7 @@ fn freeform_offset_sheets_pair_at_nearly_constant_distance() {
 
 #[test]
 fn freeform_with_a_varying_gap_is_not_one_wall() {
-    let flat_top = crate::synthetic::face(crate::face_graph::Surface::Bspline, 30, |u, v| {
+    let flat_top = crate::synthetic::face(crate::model::face_graph::Surface::Bspline, 30, |u, v| {
         (DVec3::new(60.0 * u, 40.0 * v, 2.2), DVec3::Z)
     });
     let err = pair_of(vec![wavy(0.0, false), flat_top]).unwrap_err();
@@ -318,7 +318,10 @@ fn land_sides() -> Vec<Face> {
 }
 
 /// The graph of `faces` with each edge as long as given (the perimeters the widths are measured on).
-fn graph_with_lengths(faces: Vec<Face>, adjacent: &[(usize, usize, Convexity, f64)]) -> crate::face_graph::FaceGraph {
+fn graph_with_lengths(
+    faces: Vec<Face>,
+    adjacent: &[(usize, usize, Convexity, f64)],
+) -> crate::model::face_graph::FaceGraph {
     let edges: Vec<(usize, usize, Convexity)> = adjacent.iter().map(|&(a, b, c, _)| (a, b, c)).collect();
     let mut g = synthetic::graph(faces, &edges);
     for (edge, &(_, _, _, length)) in g.edges.iter_mut().zip(adjacent) {

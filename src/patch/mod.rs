@@ -1,5 +1,6 @@
-//! Mid-patches: planning them from pair groups, and trimming the branches where they cross.
+//! Mid-patches: planning them from pair groups (which faces, where through the wall, which loops to fill), and
+//! making them in the kernel.
 
+pub mod make;
 pub mod plan;
 pub mod sides;
-pub mod trim;

@@ -10,7 +10,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::face_graph::{FaceGraph, FaceId};
+use crate::model::face_graph::{FaceGraph, FaceId};
 use crate::pairing::{FaceRole, Pairing, Side};
 
 /// The skin a face is: (group, side), or None for faces that are no skin.
@@ -139,10 +139,10 @@ mod tests {
     use glam::DVec3;
 
     use super::*;
-    use crate::face_graph::Convexity;
+    use crate::model::face_graph::Convexity;
+    use crate::model::tolerance::Tolerances;
     use crate::pairing::detect;
     use crate::synthetic;
-    use crate::tolerance::Tolerances;
 
     /// The side of `group` holding `face`.
     fn side_of(pairing: &Pairing, face: FaceId) -> (usize, Side) {

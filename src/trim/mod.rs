@@ -12,8 +12,32 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::sidecar::protocol::{Fused, FusedFace};
-use crate::union_find::find;
+use crate::kernel::{Kernel, SidecarError};
+use crate::model::shapes::{Fused, FusedFace, Handle};
+use union_find::find;
+
+mod union_find;
+
+/// The patches fused, with the pieces kept and the branches dropped.
+pub struct Trimmed {
+    pub fused: Fused,
+    pub keep: Vec<bool>,
+    pub branches: Vec<Branch>,
+}
+
+/// The trim stage: the patches behind `patches` fused into one shape (split where they cross, `fuzzy`), and
+/// the branches hanging past the crossings dropped (`limits`: how far a branch may hang past each patch).
+pub fn fuse_and_trim<K: Kernel>(
+    kernel: &mut K,
+    patches: Vec<Handle>,
+    fuzzy: f64,
+    limits: &[f64],
+) -> Result<Trimmed, SidecarError> {
+    let fused = kernel.fuse(patches, fuzzy, false)?;
+    let branches = find_branches(&fused, limits);
+    let keep = keep_mask(fused.faces.len(), &branches);
+    Ok(Trimmed { fused, keep, branches })
+}
 
 /// Overshoot allowance over the crossing patch's thickness (nominal overshoot 0.5).
 const BRANCH_WIDTH: f64 = 0.75;
@@ -150,7 +174,7 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
 
 /// The kept pieces (`keep`) that lie outside the material: `inside(face)` says whether a point of the face (moved
 /// to the middle of its wall) lies in its solid. A patch whose skin had a hole where another wall runs in (a
-/// branch pipe) is made with the hole filled (`pairs_report::junction_loops`), and the crossing wall cuts the
+/// branch pipe) is made with the hole filled (`pairing::driver::junction_loops`), and the crossing wall cuts the
 /// filling out as a piece of its own: across the branch's bore, where there is no material to be the middle of.
 /// Only pieces that touch another patch and are not their patch's largest: the body of a patch is never
 /// dropped, whatever a point of it says.
@@ -227,188 +251,4 @@ pub fn connected_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::sidecar::protocol::{FusedEdge, FusedFace};
-
-    fn mid_limits(thickness: &[f64]) -> Vec<f64> {
-        thickness.iter().map(|&t| branch_limit(t, 0.0)).collect()
-    }
-
-    /// The pieces found to be branches of two 2 mm mid patches.
-    fn branch_pieces(fused: &Fused) -> Vec<usize> {
-        find_branches(fused, &mid_limits(&[2.0, 2.0])).iter().map(|b| b.piece).collect()
-    }
-
-    fn face(patch: usize, area: f64, edges: Vec<usize>) -> FusedFace {
-        FusedFace { patch, area, centroid: DVec3::ZERO, point: DVec3::ZERO, normal: DVec3::Z, edges }
-    }
-
-    fn edge(faces: Vec<usize>, a: DVec3, b: DVec3) -> FusedEdge {
-        FusedEdge { length: a.distance(b), faces, points: (0..5).map(|k| a.lerp(b, k as f64 / 4.0)).collect() }
-    }
-
-    /// An L corner in the x-z section, 40 deep in y: the bottom patch (z = 1, x 0..60) crossed by the wall
-    /// patch (x = 1, z 0..40). Each is split at the crossing line (x = 1, z = 1) into a main piece and a
-    /// branch of width 1.
-    fn l_corner() -> Fused {
-        let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-        let crossing = edge(vec![0, 1, 2, 3], v(1.0, 0.0, 1.0), v(1.0, 40.0, 1.0));
-        let mut edges = vec![crossing];
-        // Free edges of each piece (outline only; enough for the widths).
-        let outline = [
-            (0, v(60.0, 0.0, 1.0), v(60.0, 40.0, 1.0)),
-            (1, v(0.0, 0.0, 1.0), v(0.0, 40.0, 1.0)),
-            (2, v(1.0, 0.0, 40.0), v(1.0, 40.0, 40.0)),
-            (3, v(1.0, 0.0, 0.0), v(1.0, 40.0, 0.0)),
-        ];
-        for (f, a, b) in outline {
-            edges.push(edge(vec![f], a, b));
-        }
-        Fused {
-            handle: 1,
-            faces: vec![
-                face(0, 2360.0, vec![0, 1]),
-                face(0, 40.0, vec![0, 2]),
-                face(1, 1560.0, vec![0, 3]),
-                face(1, 40.0, vec![0, 4]),
-            ],
-            edges,
-        }
-    }
-
-    /// A main pipe's patch (0) split by a branch's patch (1) into its body (piece 0) and the cap across the
-    /// branch's bore (piece 1, point at x = 100); the branch (piece 2) and a loose piece of the main touching
-    /// no other patch (piece 3, point at x = 200).
-    fn tee() -> Fused {
-        let v = |x: f64| DVec3::new(x, 0.0, 0.0);
-        let at = |mut f: FusedFace, x: f64| {
-            f.point = v(x);
-            f
-        };
-        Fused {
-            handle: 1,
-            faces: vec![
-                at(face(0, 5000.0, vec![0, 2]), 0.0),
-                at(face(0, 600.0, vec![0]), 100.0),
-                at(face(1, 3000.0, vec![0]), 50.0),
-                at(face(0, 300.0, vec![2]), 200.0),
-            ],
-            edges: vec![
-                edge(vec![0, 1, 2], v(0.0), v(1.0)),
-                edge(vec![3], v(0.0), v(1.0)),
-                edge(vec![0, 3], v(0.0), v(1.0)),
-            ],
-        }
-    }
-
-    #[test]
-    fn the_cap_across_a_bore_is_outside_the_material() {
-        // Material everywhere but beyond x = 90: the cap and the loose piece are out, only the cap touches
-        // another patch.
-        let fused = tee();
-        let out = outside_material(&fused, &[true; 4], |f| f.point.x < 90.0);
-        assert_eq!(out.iter().map(|b| (b.piece, b.reason)).collect::<Vec<_>>(), vec![(1, TrimReason::Outside)]);
-        assert_eq!(out[0].crossing, vec![1]);
-        // A piece already dropped neither counts as the patch's largest nor as a neighbour.
-        let keep = [false, true, true, true];
-        let out = outside_material(&fused, &keep, |_| false);
-        assert_eq!(out.iter().map(|b| b.piece).collect::<Vec<_>>(), Vec::<usize>::new(), "piece 1 is now the largest");
-    }
-
-    #[test]
-    fn the_body_of_a_patch_is_never_outside() {
-        assert!(outside_material(&tee(), &[true; 4], |_| false).iter().all(|b| b.piece != 0 && b.piece != 2));
-    }
-
-    #[test]
-    fn l_corner_loses_both_overshoots() {
-        let branches = find_branches(&l_corner(), &mid_limits(&[2.0, 2.0]));
-        let pieces: Vec<usize> = branches.iter().map(|b| b.piece).collect();
-        assert_eq!(pieces, vec![1, 3]);
-        assert!((branches[0].width - 1.0).abs() < 1e-12);
-    }
-
-    #[test]
-    fn a_wide_piece_is_not_a_branch() {
-        // With thin crossing walls (t = 1.2) the 1 mm overshoot exceeds 0.75 x 1.2 = 0.9: kept.
-        assert!(find_branches(&l_corner(), &mid_limits(&[1.2, 1.2])).is_empty());
-    }
-
-    #[test]
-    fn past_a_patch_on_a_skin_a_branch_may_hang_a_whole_thickness() {
-        // The same 1 mm overshoot past walls 1.2 thick whose patches lie on a skin (0.6 off the middle).
-        let limits: Vec<f64> = [1.2, 1.2].iter().map(|&t| branch_limit(t, 0.6)).collect();
-        let pieces: Vec<usize> = find_branches(&l_corner(), &limits).iter().map(|b| b.piece).collect();
-        assert_eq!(pieces, vec![1, 3]);
-    }
-
-    #[test]
-    fn a_piece_closed_in_by_crossings_is_not_a_branch() {
-        // Piece 1 of patch 0 loses its free edge: only the crossing line and another crossing bound it.
-        let mut fused = l_corner();
-        fused.edges[2].faces = vec![1, 2];
-        let pieces = branch_pieces(&fused);
-        assert_eq!(pieces, vec![3]);
-    }
-
-    #[test]
-    fn a_strip_attached_to_its_patch_is_not_a_branch() {
-        // Piece 1 of patch 0 also shares a free-standing edge with piece 0 (the edge it grew from).
-        let mut fused = l_corner();
-        fused.edges.push(edge(vec![0, 1], DVec3::new(0.5, 0.0, 1.0), DVec3::new(0.5, 40.0, 1.0)));
-        fused.faces[0].edges.push(5);
-        fused.faces[1].edges.push(5);
-        let pieces = branch_pieces(&fused);
-        assert_eq!(pieces, vec![3]);
-    }
-
-    #[test]
-    fn a_loose_corner_joined_only_to_a_branch_goes_with_it() {
-        // Piece 4 of patch 0 touches no other patch: an overshoot corner hanging off branch 1 only.
-        let mut fused = l_corner();
-        fused.faces.push(face(0, 1.0, vec![5, 6]));
-        // (perimeter of its two listed edges 2, mean width 2 x 1 / 2 = 1 <= 0.75 x 2: overshoot-sized)
-        fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
-        fused.edges.push(edge(vec![4], DVec3::new(0.0, 41.0, 1.0), DVec3::new(1.0, 41.0, 1.0)));
-        fused.faces[1].edges.push(5);
-        let pieces = branch_pieces(&fused);
-        assert_eq!(pieces, vec![1, 3, 4]);
-        // Joined to the main piece instead (by an edge longer than the overshoot), it stays.
-        fused.edges[5] = edge(vec![0, 4], DVec3::new(1.0, 40.0, 1.0), DVec3::new(3.0, 40.0, 1.0));
-        fused.faces[1].edges.pop();
-        fused.faces[0].edges.push(5);
-        let pieces = branch_pieces(&fused);
-        assert_eq!(pieces, vec![1, 3]);
-    }
-
-    #[test]
-    fn a_large_piece_touching_no_other_patch_is_not_loose() {
-        let mut fused = l_corner();
-        fused.faces.push(face(0, 400.0, vec![5, 6]));
-        fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
-        fused.edges.push(edge(vec![4], DVec3::new(0.0, 60.0, 1.0), DVec3::new(20.0, 60.0, 1.0)));
-        fused.faces[1].edges.push(5);
-        // It is part of the wall: it stays, and anchors the strip joined to it.
-        let pieces = branch_pieces(&fused);
-        assert_eq!(pieces, vec![3]);
-    }
-
-    #[test]
-    fn a_stub_shorter_than_the_overshoot_does_not_anchor() {
-        // Piece 1 reaches past the end of the crossing line by a 0.3 stub shared with piece 0: still a branch.
-        let mut fused = l_corner();
-        fused.edges.push(edge(vec![0, 1], DVec3::new(1.0, 40.0, 1.0), DVec3::new(1.0, 40.3, 1.0)));
-        fused.faces[0].edges.push(5);
-        fused.faces[1].edges.push(5);
-        let pieces = branch_pieces(&fused);
-        assert_eq!(pieces, vec![1, 3]);
-    }
-
-    #[test]
-    fn kept_pieces_group_into_shells() {
-        let fused = l_corner();
-        assert_eq!(connected_sets(&fused, &[true, false, true, false]), vec![vec![0, 2]]);
-        assert_eq!(connected_sets(&fused, &[true, false, false, true]), vec![vec![0, 3]]);
-    }
-}
+mod tests;

@@ -70,5 +70,16 @@ pub fn on_rim(thickness: f64, mesh_tolerance: f64) -> f64 {
 }
 
 /// The share of a wall's thickness within which a free edge is on the rim (`on_rim`); a thickness step no
-/// higher than this share of the thinner wall is not laid down into a ramp (`joint::step_bridges`).
+/// higher than this share of the thinner wall is not laid down into a ramp (`stitch::bridge::step_bridges`).
 pub const RIM_SHARE: f64 = 0.1;
+
+/// The fuzzy value of the fuses of a whole part (the patches of all its solids at once): the smallest of its
+/// solids' `fuse`, so that no solid's geometry is merged past its own tolerance; 0 for a part with no solid.
+pub fn part_fuse<'a>(solids: impl IntoIterator<Item = &'a Tolerances>) -> f64 {
+    let fuzzy = solids.into_iter().map(|t| t.fuse).fold(f64::INFINITY, f64::min);
+    if fuzzy.is_finite() {
+        fuzzy
+    } else {
+        0.0
+    }
+}

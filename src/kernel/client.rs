@@ -119,6 +119,8 @@ impl Sidecar {
         }
     }
 
+    /// The versions the sidecar reported (not used by the commands yet; kept for diagnostics).
+    #[allow(dead_code)]
     pub fn hello(&mut self) -> Result<Hello, SidecarError> {
         Ok(self.connected()?.hello.clone())
     }

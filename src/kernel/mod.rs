@@ -1,6 +1,9 @@
 //! The OCCT sidecar: a Python process that executes kernel operations for us (see sidecar/PROTOCOL.md).
 
 pub mod client;
+pub mod convert;
+#[cfg(test)]
+pub mod fake;
 pub mod process;
 pub mod protocol;
 pub mod python;
@@ -8,7 +11,57 @@ pub mod python;
 use std::fmt;
 use std::time::Duration;
 
+use serde::de::DeserializeOwned;
+
 pub use client::{Client, Sidecar};
+use protocol::{EdgeRef, Probed, Request};
+
+use crate::model::shapes::{EdgeProbe, Fused, Handle, Shells};
+
+/// What the stages ask of the geometric kernel. The real one is the sidecar process ([`Sidecar`]); unit tests
+/// drive the stages with a fake that answers from a script. The ops whose replies the stages keep return the
+/// domain shapes of `model::shapes`, converted here from the wire types.
+pub trait Kernel {
+    /// Sends one request and decodes its `ok` payload into `R`.
+    fn call<R: DeserializeOwned>(&mut self, request: &Request) -> Result<R, SidecarError>;
+
+    /// The patches behind `patches` fused into one shape, split where they cross (`split_internal`: also along
+    /// joints that end inside a face).
+    fn fuse(&mut self, patches: Vec<Handle>, fuzzy: f64, split_internal: bool) -> Result<Fused, SidecarError> {
+        self.call::<protocol::Fused>(&Request::Fuse { patches, fuzzy, split_internal }).map(Fused::from)
+    }
+
+    /// One shell per set of faces of the fused shape `handle`.
+    fn make_shells(&mut self, handle: Handle, shells: Vec<Vec<usize>>, fuzzy: f64) -> Result<Shells, SidecarError> {
+        self.call::<protocol::Shells>(&Request::MakeShells { handle, shells, fuzzy }).map(Shells::from)
+    }
+
+    /// The free `edges` of the fused shape `handle` sampled `samples` times each, with the rays' meetings with
+    /// the faces `targets` within `reach`.
+    fn probe_edges(
+        &mut self,
+        handle: Handle,
+        edges: Vec<EdgeRef>,
+        targets: Vec<usize>,
+        samples: usize,
+        reach: f64,
+    ) -> Result<Vec<EdgeProbe>, SidecarError> {
+        let probed: Probed = self.call(&Request::ProbeEdges { handle, edges, targets, samples, reach })?;
+        Ok(probed.edges.into_iter().map(EdgeProbe::from).collect())
+    }
+}
+
+impl Kernel for Sidecar {
+    fn call<R: DeserializeOwned>(&mut self, request: &Request) -> Result<R, SidecarError> {
+        Sidecar::call(self, request)
+    }
+}
+
+impl<T: Transport> Kernel for Client<T> {
+    fn call<R: DeserializeOwned>(&mut self, request: &Request) -> Result<R, SidecarError> {
+        Client::call(self, request)
+    }
+}
 
 /// What can go wrong talking to the sidecar. Every variant says which op it concerns.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,14 +1,14 @@
-//! Pairing of every solid of a part with its parameters, and `midsurf pairs`'s table.
-
-use std::fmt::Write;
+//! The pairing stage: every solid of a part paired with its parameters (t_max estimate, tolerances, a first
+//! pairing, the small features it reveals, a second pairing without them, the junction loops to fill).
 
 use serde::Serialize;
 
-use crate::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
-use crate::features::{self, Feature, LimitArgs, Limits};
+use crate::model::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
+use crate::model::tolerance::Tolerances;
+use crate::model::warning::Warning;
 use crate::pairing::estimate::{estimate_t_max, TMaxEstimate};
+use crate::pairing::features::{self, Feature, LimitArgs, Limits};
 use crate::pairing::{self, FaceRole, Pairing};
-use crate::tolerance::Tolerances;
 
 /// What the user asked for; None means "estimate from the part".
 #[derive(Debug, Clone, Copy)]
@@ -86,6 +86,37 @@ impl SolidPairing {
         fill.sort_unstable();
         fill.dedup();
         fill
+    }
+
+    /// What the pairing of solid `solid` (1-based) could not do: faces with no partner, groups whose faces pair
+    /// with faces of their own side.
+    pub fn warnings(&self, solid: usize, graph: &FaceGraph) -> Vec<Warning> {
+        let mut out = Vec::new();
+        for (f, role) in self.pairing.roles.iter().enumerate() {
+            if let Some(why) = role.unpaired_reason() {
+                out.push(Warning {
+                    code: "unpaired_face",
+                    message: format!(
+                        "face {f} ({}, {:.3} mm2) has no partner: {why}",
+                        graph.faces[f].surface.kind_name(),
+                        graph.faces[f].area
+                    ),
+                    solid: Some(solid),
+                    faces: vec![f],
+                });
+            }
+        }
+        for g in &self.pairing.groups {
+            if !g.side_conflicts.is_empty() {
+                out.push(Warning {
+                    code: "side_conflict",
+                    message: format!("group {}: faces pair with faces of their own side", g.id),
+                    solid: Some(solid),
+                    faces: g.side_conflicts.clone(),
+                });
+            }
+        }
+        out
     }
 }
 
@@ -174,7 +205,7 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
 }
 
 /// Pairs every solid of a part.
-pub fn pair_part(part: &crate::part::Part, params: PairingParams) -> Vec<SolidPairing> {
+pub fn pair_part(part: &crate::load::Part, params: PairingParams) -> Vec<SolidPairing> {
     part.solids.iter().map(|s| pair_solid(&s.graph, params)).collect()
 }
 
@@ -187,88 +218,10 @@ fn is_small_round(surface: &Surface, t_max: f64) -> bool {
     }
 }
 
-fn faces_list(ids: &[usize]) -> String {
-    const SHOWN: usize = 8;
-    let mut s: Vec<String> = ids.iter().take(SHOWN).map(|i| i.to_string()).collect();
-    if ids.len() > SHOWN {
-        s.push(format!("... ({} faces)", ids.len()));
-    }
-    s.join(",")
-}
-
-/// The table `midsurf pairs` prints for one solid.
-pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairing) {
-    let p = &sp.pairing;
-    writeln!(
-        out,
-        "solid {}: {} faces; t_max {:.4} mm ({}); draft_max {:.2} deg",
-        index + 1,
-        graph.faces.len(),
-        sp.tolerances.t_max,
-        sp.t_max_source,
-        sp.tolerances.draft_max.to_degrees()
-    )
-    .unwrap();
-    writeln!(
-        out,
-        "  {:>5}  {:<11}  {:>9}  {:>19}  {:>12}  side A / side B (* = reference)",
-        "group", "kind", "t mean", "t range", "overlap mm2"
-    )
-    .unwrap();
-    for g in &p.groups {
-        let star = |side: pairing::Side| if g.reference == side { "*" } else { "" };
-        writeln!(
-            out,
-            "  {:>5}  {:<11}  {:>9.4}  {:>9.4}..{:<9.4}  {:>12.2}  {}{} / {}{}{}",
-            g.id,
-            g.kind.name(),
-            g.thickness.mean,
-            g.thickness.min,
-            g.thickness.max,
-            g.overlap_area,
-            star(pairing::Side::A),
-            faces_list(&g.sides[0]),
-            star(pairing::Side::B),
-            faces_list(&g.sides[1]),
-            if g.side_conflicts.is_empty() {
-                String::new()
-            } else {
-                format!("  side conflicts {:?}", g.side_conflicts)
-            }
-        )
-        .unwrap();
-    }
-    let counts = crate::report::RoleCounts::of(&p.roles);
-    writeln!(
-        out,
-        "  roles: pair {}, thickness {}, connecting {}, suppressed {}, unpaired {}",
-        counts.pair, counts.thickness, counts.connecting, counts.suppressed, counts.unpaired
-    )
-    .unwrap();
-    for f in &sp.features {
-        let (kind, what) = (f.kind.name(), f.kind.size_name());
-        writeln!(out, "  suppressed {kind} faces {} ({what} {:.2} mm)", faces_list(&f.faces), f.size).unwrap();
-    }
-    for (f, role) in p.roles.iter().enumerate() {
-        let Some(why) = role.unpaired_reason() else {
-            continue;
-        };
-        let face = &graph.faces[f];
-        writeln!(out, "  unpaired face {f} ({}, {:.2} mm2): {why}", face.surface.kind_name(), face.area).unwrap();
-    }
-    writeln!(
-        out,
-        "  paired: {:.1}% of the area, {:.1}% of the skins (all faces but thickness faces and connecting rounds)",
-        sp.paired_share * 100.0,
-        sp.paired_skin_share * 100.0
-    )
-    .unwrap();
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::face_graph::Convexity;
+    use crate::model::face_graph::Convexity;
     use crate::pairing::Side;
     use crate::synthetic::{cuboid, cylinder, graph, rect};
     use glam::DVec3;

@@ -1,11 +1,11 @@
 //! Loading a part: checks on the input file, then `load_step` and `describe` of every solid in the sidecar.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::error::Error;
-use crate::face_graph::FaceGraph;
-use crate::sidecar::protocol::{Loaded, Request};
-use crate::sidecar::{Sidecar, SidecarError};
+use crate::kernel::protocol::{Loaded, Request};
+use crate::kernel::{Kernel, Sidecar, SidecarError};
+use crate::model::face_graph::FaceGraph;
 
 /// One solid of the part: its sidecar handle and its face graph.
 pub struct Solid {
@@ -16,7 +16,6 @@ pub struct Solid {
 }
 
 pub struct Part {
-    pub path: PathBuf,
     pub solids: Vec<Solid>,
 }
 
@@ -60,23 +59,24 @@ fn classify(path: &Path, error: SidecarError) -> Error {
     }
 }
 
-pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Part, Error> {
+/// The load stage: the STEP file read in the kernel and every solid described as a checked face graph.
+pub fn load<K: Kernel>(kernel: &mut K, path: &Path, mesh: MeshRequest) -> Result<Part, Error> {
     check_input(path)?;
     // The sidecar gets an absolute path so that its working directory never matters.
     let absolute = std::path::absolute(path).map_err(|e| Error::input(path, format!("bad path: {e}")))?;
     let text = absolute.to_str().ok_or_else(|| Error::input(path, "path is not valid UTF-8"))?;
-    let loaded: Loaded = sidecar.call(&Request::LoadStep { path: text.to_string() }).map_err(|e| classify(path, e))?;
+    let loaded: Loaded = kernel.call(&Request::LoadStep { path: text.to_string() }).map_err(|e| classify(path, e))?;
     let mut solids = Vec::with_capacity(loaded.solids.len());
     for solid in loaded.solids {
         let mesh_tolerance =
-            mesh.tolerance.unwrap_or_else(|| crate::tolerance::mesh_tolerance(solid.volume, solid.area));
+            mesh.tolerance.unwrap_or_else(|| crate::model::tolerance::mesh_tolerance(solid.volume, solid.area));
         let request = Request::Describe { handle: solid.handle, mesh: mesh.mesh, mesh_tolerance };
-        let graph: FaceGraph = sidecar.call(&request).map_err(|e| classify(path, e))?;
+        let graph: FaceGraph = kernel.call(&request).map_err(|e| classify(path, e))?;
         let problems = graph.validate();
         if !problems.is_empty() {
             return Err(Error::input(path, format!("inconsistent face graph: {}", problems.join("; "))));
         }
         solids.push(Solid { handle: solid.handle, graph, mesh_tolerance });
     }
-    Ok(Part { path: path.to_path_buf(), solids })
+    Ok(Part { solids })
 }

@@ -5,7 +5,7 @@ use std::fmt::Write;
 
 use serde::Serialize;
 
-use crate::face_graph::{Convexity, FaceGraph};
+use crate::model::face_graph::{Convexity, FaceGraph};
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SolidSummary {

@@ -1,173 +1,22 @@
-//! Extend and stitch (Sheen et al. 5.4): grow the open free edges of the trimmed patches up to their partners,
-//! fuse again so every joint becomes a shared edge, and trim the overshoot.
+//! One pass of stitching: per free edge the strip it grows (a joint to its partner, or to the rim), the quads
+//! bridging thickness steps and the notches at corners, all made in one kernel call; then each patch gathered
+//! with its strips and everything fused again and trimmed.
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use serde::Serialize;
-
+use super::bridge;
+use super::edges::{open, to_rim};
+use super::joint::{self, Verdict};
+use super::{kept_faces, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
-use crate::joint::{self, Verdict};
-use crate::patch::trim::{branch_limit, find_branches, keep_mask, outside_material, Branch};
-use crate::sidecar::protocol::{
-    CornerRequest, EdgeProbe, EdgeRef, Extended, Fused, GatherPart, Gathered, Probed, Request, StripRequest,
-};
-use crate::sidecar::{Sidecar, SidecarError};
-
-/// What one patch brings: its thickness, its solid (index into the solids' meshes) and how far its joints
-/// may reach.
-#[derive(Debug, Clone, Copy)]
-pub struct PatchInfo {
-    pub thickness: f64,
-    /// From the patch to the middle of its wall along the patch normal (0 for a mid-patch).
-    pub to_mid: f64,
-    pub solid: usize,
-    pub reach: f64,
-    /// A free edge closer than this to the boundary is on the rim (`tolerance::on_rim`).
-    pub on_rim: f64,
-    /// A patch of its solid was made with a junction loop filled (`pairs_report::junction_loops`): the pieces
-    /// outside the material (the filling across the branch's bore, the branch's strip past the main) are trimmed.
-    pub junction: bool,
-    /// The wall (solid, pair group) the patch was made from: the levels of a thickness step share it.
-    pub wall: (usize, usize),
-}
-
-/// The joints made between two patches (or tried from one), summed over their edges.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct JointReport {
-    /// 1-based patch ids, sorted; one id for an edge that found no partner.
-    pub patches: Vec<usize>,
-    pub kind: &'static str,
-    pub status: &'static str,
-    pub edges: usize,
-    pub length: f64,
-}
-
-/// Free edges of the result that still lie in the material (open joints), and the part's rim.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
-pub struct FreeEdges {
-    pub rim_edges: usize,
-    pub rim_length: f64,
-    pub open_edges: usize,
-    pub open_length: f64,
-}
-
-pub struct Stitched {
-    pub fused: Fused,
-    pub keep: Vec<bool>,
-    /// Branches dropped in this pass (the overshoot of the strips, and crossings they made).
-    pub branches: Vec<Branch>,
-    pub joints: Vec<JointReport>,
-    pub free: FreeEdges,
-    /// The patches (indices) with an open edge left.
-    pub open_patches: BTreeSet<usize>,
-}
-
-/// Free edges of the kept faces: (edge, its one kept face), in edge order.
-fn free_edges(fused: &Fused, keep: &[bool]) -> Vec<(usize, usize)> {
-    fused
-        .edges
-        .iter()
-        .enumerate()
-        .filter_map(|(e, edge)| {
-            let kept: Vec<usize> = edge.faces.iter().copied().filter(|&f| keep[f]).collect();
-            (kept.len() == 1 && edge.length > 0.0).then(|| (e, kept[0]))
-        })
-        .collect()
-}
-
-fn probe(
-    sidecar: &mut Sidecar,
-    fused: &Fused,
-    free: &[(usize, usize)],
-    targets: Vec<usize>,
-    patches: &[PatchInfo],
-) -> Result<Vec<EdgeProbe>, SidecarError> {
-    if free.is_empty() {
-        return Ok(Vec::new());
-    }
-    let edges = free.iter().map(|&(edge, face)| EdgeRef { edge, face }).collect();
-    let reach = patches.iter().map(|p| p.reach).fold(0.0, f64::max);
-    let probed: Probed =
-        sidecar.call(&Request::ProbeEdges { handle: fused.handle, edges, targets, samples: joint::SAMPLES, reach })?;
-    Ok(probed.edges)
-}
-
-/// How far a branch may hang past each patch.
-pub fn branch_limits(patches: &[PatchInfo]) -> Vec<f64> {
-    patches.iter().map(|p| branch_limit(p.thickness, p.to_mid)).collect()
-}
-
-/// The pieces of `fused` to drop: the branches hanging past crossings, then of the rest those of patches with a
-/// filled junction that lie outside the material; with the mask of the pieces kept.
-fn trim(fused: &Fused, patches: &[PatchInfo], solids: &[SolidMesh]) -> (Vec<bool>, Vec<Branch>) {
-    let mut branches = find_branches(fused, &branch_limits(patches));
-    let keep = keep_mask(fused.faces.len(), &branches);
-    // Only where a junction was filled: elsewhere a piece of a patch out of the material is an overshoot the
-    // joints still use (dropping them all made ender3_x_limit's and fw13_top_cover's stitching worse).
-    if !patches.iter().any(|p| p.junction) {
-        return (keep, branches);
-    }
-    branches.extend(outside_material(fused, &keep, |face| {
-        let patch = &patches[face.patch];
-        !patch.junction || solids[patch.solid].contains(face.point + face.normal * patch.to_mid)
-    }));
-    (keep_mask(fused.faces.len(), &branches), branches)
-}
-
-/// Whether the free edge of `face` lies in the material of its patch's solid.
-fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], solids: &[SolidMesh]) -> bool {
-    let patch = &patches[fused.faces[face].patch];
-    joint::is_open(probe, joint::PROBE_STEP * patch.thickness, patch.to_mid, |q| solids[patch.solid].contains(q))
-}
-
-/// How far the free edge `edge` of `face` must grow to reach the part's boundary (see
-/// `joint::rim_shortfall`). Only straight edges: a strip grown from a curved edge of a curved patch (a tube's
-/// end) is a ruled face off the patch's surface, and fusing it broke the patch it touched (salome_pipe).
-fn to_rim(
-    fused: &Fused,
-    edge: usize,
-    face: usize,
-    probe: &EdgeProbe,
-    patches: &[PatchInfo],
-    solids: &[SolidMesh],
-) -> Option<Vec<f64>> {
-    let points = &fused.edges[edge].points;
-    let chord = match (points.first(), points.last()) {
-        (Some(a), Some(b)) => a.distance(*b),
-        _ => 0.0,
-    };
-    if chord < STRAIGHT * fused.edges[edge].length {
-        return None;
-    }
-    shortfall(fused, face, probe, patches, solids)
-}
-
-/// How far the free edge of `face` stops short of the part's boundary, if it does (`joint::rim_shortfall`).
-fn shortfall(
-    fused: &Fused,
-    face: usize,
-    probe: &EdgeProbe,
-    patches: &[PatchInfo],
-    solids: &[SolidMesh],
-) -> Option<Vec<f64>> {
-    let patch = &patches[fused.faces[face].patch];
-    let solid = &solids[patch.solid];
-    let reach = joint::RIM_REACH * patch.thickness + patch.on_rim;
-    joint::rim_shortfall(
-        probe,
-        patch.to_mid,
-        patch.on_rim,
-        |q| solid.contains(q),
-        |q, d| solid.exit(q, d.normalize_or_zero(), reach),
-    )
-}
-
-/// An edge whose chord is this share of its length is straight.
-const STRAIGHT: f64 = 0.999;
+use crate::kernel::protocol::{CornerRequest, Extended, GatherPart, Gathered, Request, StripRequest};
+use crate::kernel::{Kernel, SidecarError};
+use crate::model::shapes::{EdgeProbe, Fused};
+use crate::trim::Branch;
 
 /// Which free edges a pass grows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Pass {
+pub(super) enum Pass {
     /// Every free edge: joints to partner patches, and edges short of the rim.
     Joints,
     /// The free edges left by the joints (an L-joint's overshoot that stayed joined to its patch past a wall's
@@ -175,62 +24,12 @@ enum Pass {
     Rims,
 }
 
-/// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again (also without any
-/// extension: the final fuse splits faces along joints that end inside them). When edges are still open after
-/// that, one more pass grows the free edges that stop short of the rim.
-pub fn stitch(
-    sidecar: &mut Sidecar,
-    fused: &Fused,
-    keep: &[bool],
-    patches: &[PatchInfo],
-    solids: &[SolidMesh],
-    fuzzy: f64,
-) -> Result<Stitched, SidecarError> {
-    let mut tally = JointTally::default();
-    let (free, probes) = free_and_probed(sidecar, fused, keep, patches, true)?;
-    let grown = grow(sidecar, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
-    let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
-    // The free edges of the result, probed once for both the rims pass and the final count.
-    let (mut free, mut probes) = free_and_probed(sidecar, &fused, &keep, patches, false)?;
-    let (mut counted, mut open_patches) = classify_free(&fused, &free, &probes, patches, solids);
-    if counted.open_edges > 0 {
-        if let Some((again, again_keep, more)) =
-            grow(sidecar, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
-        {
-            (fused, keep) = (again, again_keep);
-            branches.extend(more);
-            (free, probes) = free_and_probed(sidecar, &fused, &keep, patches, false)?;
-            (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
-        }
-    }
-    Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches })
-}
-
-/// The free edges of `fused` (pieces `keep`) and their probes, with their meetings with the kept pieces when
-/// `meetings` (a joints pass looks for partners; the rims pass and the final count do not).
-fn free_and_probed(
-    sidecar: &mut Sidecar,
-    fused: &Fused,
-    keep: &[bool],
-    patches: &[PatchInfo],
-    meetings: bool,
-) -> Result<(Vec<(usize, usize)>, Vec<EdgeProbe>), SidecarError> {
-    let free = free_edges(fused, keep);
-    let targets = if meetings { kept_faces(keep) } else { Vec::new() };
-    let probes = probe(sidecar, fused, &free, targets, patches)?;
-    Ok((free, probes))
-}
-
-fn kept_faces(keep: &[bool]) -> Vec<usize> {
-    (0..keep.len()).filter(|&f| keep[f]).collect()
-}
-
 /// One pass of `stitch` over the free edges `free` of `fused` and their probes (with meetings for a joints
 /// pass): the result fused again, its kept pieces and the branches dropped; None when a rims pass finds
 /// nothing to grow.
 #[allow(clippy::too_many_arguments)]
-fn grow(
-    sidecar: &mut Sidecar,
+pub(super) fn grow<K: Kernel>(
+    kernel: &mut K,
     fused: &Fused,
     keep: &[bool],
     free: &[(usize, usize)],
@@ -306,7 +105,7 @@ fn grow(
     let mut extended_handle = None;
     if !planned.is_empty() || !steps.is_empty() {
         let corners = corners(&planned, fuzzy);
-        let extended: Extended = sidecar.call(&Request::ExtendEdges {
+        let extended: Extended = kernel.call(&Request::ExtendEdges {
             handle: fused.handle,
             strips: planned.iter().map(|(_, s, _, _)| s.clone()).collect(),
             corners: corners.iter().map(|(_, c)| c).chain(steps.iter().map(|(_, c, _, _)| c)).cloned().collect(),
@@ -363,11 +162,11 @@ fn grow(
         if parts.is_empty() {
             continue;
         }
-        let gathered: Gathered = sidecar.call(&Request::Gather { parts, unify })?;
+        let gathered: Gathered = kernel.call(&Request::Gather { parts, unify })?;
         order.push(k);
         handles.push(gathered.handle);
     }
-    let mut again: Fused = sidecar.call(&Request::Fuse { patches: handles, fuzzy, split_internal: true })?;
+    let mut again = kernel.fuse(handles, fuzzy, true)?;
     for face in &mut again.faces {
         face.patch = order[face.patch];
     }
@@ -386,16 +185,16 @@ struct OpenEdge<'a> {
     open: bool,
 }
 
-/// The quads bridging open edges across thickness steps (`joint::step_bridges`), each owned by its `owner`
+/// The quads bridging open edges across thickness steps (`bridge::step_bridges`), each owned by its `owner`
 /// edge's patch, with its joint key and the lengths of both edges; and the free edges (indices) bridged. The
 /// edges that found no partner and no bridge are tallied as having no partner.
 fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) -> (Vec<StepQuad>, BTreeSet<usize>) {
-    let edges: Vec<joint::LooseEdge> = open
+    let edges: Vec<bridge::LooseEdge> = open
         .iter()
         .map(|e| {
             let p = e.probe;
             let mid = p.points.len() / 2;
-            joint::LooseEdge {
+            bridge::LooseEdge {
                 patch: e.patch,
                 wall: patches[e.patch].wall,
                 thickness: patches[e.patch].thickness,
@@ -409,7 +208,7 @@ fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) 
         .collect();
     let mut bridged = vec![false; open.len()];
     let mut out = Vec::new();
-    for joint::StepBridge { owner, other, quad, normal } in joint::step_bridges(&edges) {
+    for bridge::StepBridge { owner, other, quad, normal } in bridge::step_bridges(&edges) {
         (bridged[owner], bridged[other]) = (true, true);
         let mut ids = vec![edges[owner].patch + 1, edges[other].patch + 1];
         ids.sort_unstable();
@@ -428,9 +227,16 @@ fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) 
 /// and end both growing into the walls they meet): a quad v, a, c, b fills it, where a and b are the strips'
 /// far corners over v and c = a + b - v. Edges continuing each other (outward directions within 10 degrees)
 /// need none; at a reflex corner the strips overlap instead.
+/// Two strip ends are at one corner within this many fuzzy tolerances (the fuse merges points that close), and
+/// never less than this floor (a fuzzy value of 0).
+const CORNER_SAME_POINT_FUZZY: f64 = 10.0;
+const CORNER_SAME_POINT_MIN: f64 = 1e-9;
+/// Edges whose outward directions are within this angle (degrees) continue each other: no notch between them.
+const CORNER_CONTINUING_DEG: f64 = 10.0;
+
 fn corners(planned: &[Planned], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
-    let same_point = (fuzzy * 10.0).max(1e-9);
-    let continuing = 10f64.to_radians().cos();
+    let same_point = (fuzzy * CORNER_SAME_POINT_FUZZY).max(CORNER_SAME_POINT_MIN);
+    let continuing = CORNER_CONTINUING_DEG.to_radians().cos();
     // (point, direction along the edge into that end, outward, length, normal) at both ends of a strip.
     let ends = |s: &StripRequest, p: &EdgeProbe| {
         let n = p.points.len();
@@ -464,32 +270,6 @@ fn corners(planned: &[Planned], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
     out
 }
 
-/// Sorts the free edges of the result into rim and open (the inside test of `decide`, or the edge stopping short
-/// of the boundary by more than the rim tolerance); also the patches with an open edge.
-fn classify_free(
-    fused: &Fused,
-    free: &[(usize, usize)],
-    probes: &[EdgeProbe],
-    patches: &[PatchInfo],
-    solids: &[SolidMesh],
-) -> (FreeEdges, BTreeSet<usize>) {
-    let mut out = FreeEdges::default();
-    let mut open_patches = BTreeSet::new();
-    for (&(edge, face), p) in free.iter().zip(probes) {
-        let length = fused.edges[edge].length;
-        // Short of the rim is open too: the material goes on past the edge, if only for a round's width.
-        if open(fused, face, p, patches, solids) || shortfall(fused, face, p, patches, solids).is_some() {
-            out.open_edges += 1;
-            out.open_length += length;
-            open_patches.insert(fused.faces[face].patch);
-        } else {
-            out.rim_edges += 1;
-            out.rim_length += length;
-        }
-    }
-    (out, open_patches)
-}
-
 /// Patch ids (sorted), kind, status.
 type JointKey = (Vec<usize>, &'static str, &'static str);
 
@@ -501,16 +281,16 @@ type StepQuad = (usize, CornerRequest, JointKey, [f64; 2]);
 
 /// Edges and length per joint key, in key order (deterministic).
 #[derive(Default)]
-struct JointTally(BTreeMap<JointKey, (usize, f64)>);
+pub(super) struct JointTally(BTreeMap<JointKey, (usize, f64)>);
 
 impl JointTally {
-    fn add(&mut self, key: JointKey, length: f64) {
+    pub(super) fn add(&mut self, key: JointKey, length: f64) {
         let entry = self.0.entry(key).or_default();
         entry.0 += 1;
         entry.1 += length;
     }
 
-    fn reports(&self) -> Vec<JointReport> {
+    pub(super) fn reports(&self) -> Vec<JointReport> {
         self.0
             .iter()
             .map(|((patches, kind, status), &(edges, length))| JointReport {

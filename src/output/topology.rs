@@ -3,9 +3,9 @@
 
 use serde::Serialize;
 
+use super::round;
+use crate::model::shapes::{Fused, Shells};
 use crate::pairing::PairKind;
-use crate::report::PatchReport;
-use crate::sidecar::protocol::{Fused, Shells};
 use crate::stitch::{FreeEdges, JointReport};
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -34,23 +34,12 @@ pub struct TopologyPatch {
     pub faces: usize,
 }
 
-/// Rounded to `digits` decimals; -0 becomes 0 so the text does not flicker.
-pub fn round(x: f64, digits: i32) -> f64 {
-    let scale = 10f64.powi(digits);
-    let r = (x * scale).round() / scale;
-    if r == 0.0 {
-        0.0
-    } else {
-        r
-    }
-}
-
 pub fn summarise(
     fused: &Fused,
     keep: &[bool],
     shells: &Shells,
     components: usize,
-    patches: &[PatchReport],
+    patches: Vec<TopologyPatch>,
     joints: &[JointReport],
     free: Option<FreeEdges>,
 ) -> Topology {
@@ -71,17 +60,7 @@ pub fn summarise(
             open_length: round(f.open_length, 2),
             ..f
         }),
-        patches: patches
-            .iter()
-            .map(|p| TopologyPatch {
-                id: p.id,
-                kind: p.kind,
-                source_faces: p.source_faces.clone(),
-                thickness: round(p.thickness.mean, 3),
-                area: round(p.area, 1),
-                faces: p.faces,
-            })
-            .collect(),
+        patches,
         joints,
     }
 }

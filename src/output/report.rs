@@ -2,14 +2,15 @@
 
 use serde::Serialize;
 
-use crate::face_graph::FaceId;
+use super::round;
+use super::topology::{Topology, TopologyPatch};
+use crate::model::face_graph::FaceId;
+use crate::model::tolerance::Tolerances;
+pub use crate::model::warning::Warning;
 use crate::pairing::estimate::TMaxEstimate;
 use crate::pairing::{FaceRole, PairGroup, PairKind, Thickness};
-use crate::patch::trim::{Branch, TrimReason};
 use crate::stitch::{FreeEdges, JointReport};
-use crate::tolerance::Tolerances;
-use crate::topology::round;
-use crate::topology::Topology;
+use crate::trim::{Branch, TrimReason};
 
 /// Bumped when a field changes meaning or disappears.
 pub const REPORT_VERSION: u32 = 1;
@@ -42,7 +43,7 @@ pub struct Parameters {
     pub t_max: Option<f64>,
     pub draft_max_deg: f64,
     /// Where the patches lie through their walls: mid, top (the reference face's skin) or bottom.
-    pub position: crate::patch::plan::Position,
+    pub position: crate::model::params::Position,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -57,9 +58,9 @@ pub struct SolidReport {
     pub t_max_estimate: TMaxEstimate,
     pub tolerances: Tolerances,
     /// Size limits of the small features (user values or defaults from t_max).
-    pub feature_limits: crate::features::Limits,
+    pub feature_limits: crate::pairing::features::Limits,
     /// Small features suppressed: kind, faces, size (fillet radius, hole diameter, boss box diagonal).
-    pub suppressed: Vec<crate::features::Feature>,
+    pub suppressed: Vec<crate::pairing::features::Feature>,
     pub groups: Vec<PairGroup>,
     pub roles: RoleCounts,
     pub unpaired: Vec<Unpaired>,
@@ -115,6 +116,20 @@ pub struct PatchReport {
     pub faces: usize,
 }
 
+impl PatchReport {
+    /// The patch as the topology summary lists it, rounded for stable snapshots.
+    pub fn topology(&self) -> TopologyPatch {
+        TopologyPatch {
+            id: self.id,
+            kind: self.kind,
+            source_faces: self.source_faces.clone(),
+            thickness: round(self.thickness.mean, 3),
+            area: round(self.area, 1),
+            faces: self.faces,
+        }
+    }
+}
+
 #[derive(Debug, Clone, Serialize)]
 pub struct TrimmedReport {
     pub patch: usize,
@@ -152,19 +167,6 @@ pub struct ResultSummary {
     /// Free edges of the result: on the part's rim, or open (inside the material: an unmade joint).
     /// Absent when stitching failed.
     pub free_edges: Option<FreeEdges>,
-}
-
-#[derive(Debug, Clone, Serialize)]
-pub struct Warning {
-    /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict,
-    /// thickness_step, partial_overlap, joint_failed, stitch_failed, open_edges, invalid_output,
-    /// feature_not_suppressed.
-    pub code: &'static str,
-    pub message: String,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub solid: Option<usize>,
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub faces: Vec<FaceId>,
 }
 
 #[derive(Debug, Clone, Default, Serialize)]

@@ -1,0 +1,85 @@
+//! The free edges of the stitched result: open (in the material: a joint not made) or on the rim, and how far
+//! an edge stops short of the part's boundary.
+
+use std::collections::BTreeSet;
+
+use super::{joint, FreeEdges, PatchInfo};
+use crate::geom::inside::SolidMesh;
+use crate::model::shapes::{EdgeProbe, Fused};
+
+/// Whether the free edge of `face` lies in the material of its patch's solid.
+pub(super) fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], solids: &[SolidMesh]) -> bool {
+    let patch = &patches[fused.faces[face].patch];
+    joint::is_open(probe, joint::PROBE_STEP * patch.thickness, patch.to_mid, |q| solids[patch.solid].contains(q))
+}
+
+/// How far the free edge `edge` of `face` must grow to reach the part's boundary (see
+/// `joint::rim_shortfall`). Only straight edges: a strip grown from a curved edge of a curved patch (a tube's
+/// end) is a ruled face off the patch's surface, and fusing it broke the patch it touched (salome_pipe).
+pub(super) fn to_rim(
+    fused: &Fused,
+    edge: usize,
+    face: usize,
+    probe: &EdgeProbe,
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+) -> Option<Vec<f64>> {
+    let points = &fused.edges[edge].points;
+    let chord = match (points.first(), points.last()) {
+        (Some(a), Some(b)) => a.distance(*b),
+        _ => 0.0,
+    };
+    if chord < STRAIGHT * fused.edges[edge].length {
+        return None;
+    }
+    shortfall(fused, face, probe, patches, solids)
+}
+
+/// How far the free edge of `face` stops short of the part's boundary, if it does (`joint::rim_shortfall`).
+fn shortfall(
+    fused: &Fused,
+    face: usize,
+    probe: &EdgeProbe,
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+) -> Option<Vec<f64>> {
+    let patch = &patches[fused.faces[face].patch];
+    let solid = &solids[patch.solid];
+    let reach = joint::RIM_REACH * patch.thickness + patch.on_rim;
+    joint::rim_shortfall(
+        probe,
+        patch.to_mid,
+        patch.on_rim,
+        |q| solid.contains(q),
+        |q, d| solid.exit(q, d.normalize_or_zero(), reach),
+    )
+}
+
+/// An edge whose chord is this share of its length is straight.
+const STRAIGHT: f64 = 0.999;
+
+/// Sorts the free edges of the result into rim and open (the inside test of `decide`, or the edge stopping short
+/// of the boundary by more than the rim tolerance); also the patches with an open edge.
+pub(super) fn classify_free(
+    fused: &Fused,
+    free: &[(usize, usize)],
+    probes: &[EdgeProbe],
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+) -> (FreeEdges, BTreeSet<usize>) {
+    let mut out = FreeEdges::default();
+    let mut open_patches = BTreeSet::new();
+    for (&(edge, face), p) in free.iter().zip(probes) {
+        let length = fused.edges[edge].length;
+        // Short of the rim is open too: the material goes on past the edge, if only for a round's width.
+        if open(fused, face, p, patches, solids) || shortfall(fused, face, p, patches, solids).is_some() {
+            out.open_edges += 1;
+            out.open_length += length;
+            open_patches.insert(fused.faces[face].patch);
+        } else {
+            out.rim_edges += 1;
+            out.rim_length += length;
+        }
+    }
+    (out, open_patches)
+}

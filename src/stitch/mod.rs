@@ -1,0 +1,250 @@
+//! Extend and stitch (Sheen et al. 5.4): grow the open free edges of the trimmed patches up to their partners,
+//! fuse again so every joint becomes a shared edge, and trim the overshoot.
+
+mod bridge;
+mod edges;
+mod grow;
+pub mod joint;
+mod reach;
+#[cfg(test)]
+mod tests;
+
+use std::collections::BTreeSet;
+
+use serde::Serialize;
+
+use crate::geom::inside::SolidMesh;
+use crate::kernel::protocol::EdgeRef;
+use crate::kernel::{Kernel, SidecarError};
+use crate::model::shapes::{EdgeProbe, Fused};
+use crate::model::warning::Warning;
+use crate::trim::{find_branches, keep_mask, outside_material, Branch, Trimmed};
+use edges::classify_free;
+use grow::{grow, JointTally, Pass};
+pub use reach::{branch_limits, patch_infos};
+
+/// What one patch brings: its thickness, its solid (index into the solids' meshes) and how far its joints
+/// may reach.
+#[derive(Debug, Clone, Copy)]
+pub struct PatchInfo {
+    pub thickness: f64,
+    /// From the patch to the middle of its wall along the patch normal (0 for a mid-patch).
+    pub to_mid: f64,
+    pub solid: usize,
+    pub reach: f64,
+    /// A free edge closer than this to the boundary is on the rim (`tolerance::on_rim`).
+    pub on_rim: f64,
+    /// A patch of its solid was made with a junction loop filled (`pairing::driver::junction_loops`): the pieces
+    /// outside the material (the filling across the branch's bore, the branch's strip past the main) are trimmed.
+    pub junction: bool,
+    /// The wall (solid, pair group) the patch was made from: the levels of a thickness step share it.
+    pub wall: (usize, usize),
+}
+
+/// The joints made between two patches (or tried from one), summed over their edges.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JointReport {
+    /// 1-based patch ids, sorted; one id for an edge that found no partner.
+    pub patches: Vec<usize>,
+    pub kind: &'static str,
+    pub status: &'static str,
+    pub edges: usize,
+    pub length: f64,
+}
+
+/// Free edges of the result that still lie in the material (open joints), and the part's rim.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct FreeEdges {
+    pub rim_edges: usize,
+    pub rim_length: f64,
+    pub open_edges: usize,
+    pub open_length: f64,
+}
+
+pub struct Stitched {
+    pub fused: Fused,
+    pub keep: Vec<bool>,
+    /// Branches dropped in this pass (the overshoot of the strips, and crossings they made).
+    pub branches: Vec<Branch>,
+    pub joints: Vec<JointReport>,
+    pub free: FreeEdges,
+    /// The patches (indices) with an open edge left.
+    pub open_patches: BTreeSet<usize>,
+}
+
+/// Free edges of the kept faces: (edge, its one kept face), in edge order.
+fn free_edges(fused: &Fused, keep: &[bool]) -> Vec<(usize, usize)> {
+    fused
+        .edges
+        .iter()
+        .enumerate()
+        .filter_map(|(e, edge)| {
+            let kept: Vec<usize> = edge.faces.iter().copied().filter(|&f| keep[f]).collect();
+            (kept.len() == 1 && edge.length > 0.0).then(|| (e, kept[0]))
+        })
+        .collect()
+}
+
+fn probe<K: Kernel>(
+    kernel: &mut K,
+    fused: &Fused,
+    free: &[(usize, usize)],
+    targets: Vec<usize>,
+    patches: &[PatchInfo],
+) -> Result<Vec<EdgeProbe>, SidecarError> {
+    if free.is_empty() {
+        return Ok(Vec::new());
+    }
+    let edges = free.iter().map(|&(edge, face)| EdgeRef { edge, face }).collect();
+    let reach = patches.iter().map(|p| p.reach).fold(0.0, f64::max);
+    kernel.probe_edges(fused.handle, edges, targets, joint::SAMPLES, reach)
+}
+
+/// The pieces of `fused` to drop: the branches hanging past crossings, then of the rest those of patches with a
+/// filled junction that lie outside the material; with the mask of the pieces kept.
+pub(super) fn trim(fused: &Fused, patches: &[PatchInfo], solids: &[SolidMesh]) -> (Vec<bool>, Vec<Branch>) {
+    let mut branches = find_branches(fused, &branch_limits(patches));
+    let keep = keep_mask(fused.faces.len(), &branches);
+    // Only where a junction was filled: elsewhere a piece of a patch out of the material is an overshoot the
+    // joints still use (dropping them all made ender3_x_limit's and fw13_top_cover's stitching worse).
+    if !patches.iter().any(|p| p.junction) {
+        return (keep, branches);
+    }
+    branches.extend(outside_material(fused, &keep, |face| {
+        let patch = &patches[face.patch];
+        !patch.junction || solids[patch.solid].contains(face.point + face.normal * patch.to_mid)
+    }));
+    (keep_mask(fused.faces.len(), &branches), branches)
+}
+
+/// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again (also without any
+/// extension: the final fuse splits faces along joints that end inside them). When edges are still open after
+/// that, one more pass grows the free edges that stop short of the rim.
+pub fn stitch<K: Kernel>(
+    kernel: &mut K,
+    fused: &Fused,
+    keep: &[bool],
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+    fuzzy: f64,
+) -> Result<Stitched, SidecarError> {
+    let mut tally = JointTally::default();
+    let (free, probes) = free_and_probed(kernel, fused, keep, patches, true)?;
+    let grown = grow(kernel, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
+    let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
+    // The free edges of the result, probed once for both the rims pass and the final count.
+    let (mut free, mut probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
+    let (mut counted, mut open_patches) = classify_free(&fused, &free, &probes, patches, solids);
+    if counted.open_edges > 0 {
+        if let Some((again, again_keep, more)) =
+            grow(kernel, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
+        {
+            (fused, keep) = (again, again_keep);
+            branches.extend(more);
+            (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
+            (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
+        }
+    }
+    Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches })
+}
+
+/// The free edges of `fused` (pieces `keep`) and their probes, with their meetings with the kept pieces when
+/// `meetings` (a joints pass looks for partners; the rims pass and the final count do not).
+fn free_and_probed<K: Kernel>(
+    kernel: &mut K,
+    fused: &Fused,
+    keep: &[bool],
+    patches: &[PatchInfo],
+    meetings: bool,
+) -> Result<(Vec<(usize, usize)>, Vec<EdgeProbe>), SidecarError> {
+    let free = free_edges(fused, keep);
+    let targets = if meetings { kept_faces(keep) } else { Vec::new() };
+    let probes = probe(kernel, fused, &free, targets, patches)?;
+    Ok((free, probes))
+}
+
+pub(super) fn kept_faces(keep: &[bool]) -> Vec<usize> {
+    (0..keep.len()).filter(|&f| keep[f]).collect()
+}
+
+/// What the stitch stage hands on: the fused patches with the pieces kept, every branch dropped (by trimming
+/// and by stitching), the joints, the free edges (None when stitching failed and the patches are written
+/// unstitched) and the warnings, in that order: open edges or the failure, then the joints not made.
+pub struct Outcome {
+    pub fused: Fused,
+    pub keep: Vec<bool>,
+    pub branches: Vec<Branch>,
+    pub joints: Vec<JointReport>,
+    pub free: Option<FreeEdges>,
+    pub warnings: Vec<Warning>,
+}
+
+/// The stitch stage on the trimmed patches. A kernel op that fails leaves the patches unstitched, with a
+/// warning; a kernel that stops answering is an error.
+pub fn stitch_part<K: Kernel>(
+    kernel: &mut K,
+    trimmed: Trimmed,
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+    fuzzy: f64,
+) -> Result<Outcome, SidecarError> {
+    let Trimmed { fused, keep, mut branches } = trimmed;
+    let mut warnings = Vec::new();
+    let (fused, keep, joints, free) = match stitch(kernel, &fused, &keep, patches, solids, fuzzy) {
+        Ok(s) => {
+            branches.extend(s.branches);
+            warnings.extend(open_edges_warning(&s.free, &s.open_patches));
+            (s.fused, s.keep, s.joints, Some(s.free))
+        }
+        Err(e) if e.code().is_some() => {
+            warnings.push(Warning {
+                code: "stitch_failed",
+                message: format!("the patches are written unstitched: {e}"),
+                solid: None,
+                faces: Vec::new(),
+            });
+            (fused, keep, Vec::new(), None)
+        }
+        Err(e) => return Err(e),
+    };
+    warnings.extend(joint_warnings(&joints));
+    Ok(Outcome { fused, keep, branches, joints, free, warnings })
+}
+
+fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
+    joints
+        .iter()
+        .filter(|j| j.status != "extended")
+        .map(|j| Warning {
+            code: "joint_failed",
+            message: match j.status {
+                "no_partner" => format!(
+                    "patch {}: {} open edge(s), {:.3} mm, meet no patch within reach; left unstitched",
+                    j.patches[0], j.edges, j.length
+                ),
+                _ => format!(
+                    "{} joint of patches {:?}: the kernel could not grow {} edge(s), {:.3} mm",
+                    j.kind, j.patches, j.edges, j.length
+                ),
+            },
+            solid: None,
+            faces: Vec::new(),
+        })
+        .collect()
+}
+
+/// Open edges left after stitching are gaps in the mid-surface a mesher would keep: said once, with the patches.
+fn open_edges_warning(free: &FreeEdges, open_patches: &BTreeSet<usize>) -> Option<Warning> {
+    (free.open_edges > 0).then(|| Warning {
+        code: "open_edges",
+        message: format!(
+            "{} free edge(s), {:.3} mm, still lie inside the material after stitching (patches {}): the \
+             mid-surface has gaps there",
+            free.open_edges,
+            free.open_length,
+            crate::model::warning::patch_list(open_patches)
+        ),
+        solid: None,
+        faces: Vec::new(),
+    })
+}

@@ -1,0 +1,203 @@
+//! Stitching driven by the fake kernel: hand-made fused patches and probes of their free edges (as the sidecar
+//! would reply), and assertions on what stitch decides (which edges grow, how, and which stay free).
+
+use glam::DVec3;
+use serde_json::{json, Value};
+
+use super::*;
+use crate::kernel::fake::FakeKernel;
+use crate::kernel::protocol::Request;
+use crate::synthetic;
+
+#[test]
+fn open_edges_are_said_once_with_their_patches() {
+    let free = FreeEdges { rim_edges: 4, rim_length: 40.0, open_edges: 3, open_length: 2.5 };
+    let w = open_edges_warning(&free, &BTreeSet::from([6, 0])).unwrap();
+    assert_eq!(w.code, "open_edges");
+    assert!(w.message.starts_with("3 free edge(s), 2.500 mm") && w.message.contains("(patches 1, 7)"), "{}", w.message);
+    assert!(open_edges_warning(&FreeEdges { open_edges: 0, ..free }, &BTreeSet::new()).is_none());
+}
+
+fn v(p: DVec3) -> Value {
+    json!([p.x, p.y, p.z])
+}
+
+/// A fused face of `patch` with normal `normal` (the rest does not matter to stitch).
+fn face(patch: usize, normal: DVec3) -> Value {
+    json!({"patch": patch, "area": 100.0, "centroid": [0, 0, 0], "point": [0, 0, 0], "normal": v(normal), "edges": []})
+}
+
+/// A straight edge from a to b on `faces`.
+fn edge(a: DVec3, b: DVec3, faces: &[usize]) -> Value {
+    json!({"length": a.distance(b), "faces": faces, "points": [v(a), v(b)]})
+}
+
+/// The probe of a straight free edge from a to b (`joint::SAMPLES` samples), the patch's normal, the outward
+/// direction, and at every sample the same meetings (face, distance, gap).
+fn probe(a: DVec3, b: DVec3, normal: DVec3, outward: DVec3, hits: &[(usize, f64, f64)]) -> Value {
+    let n = joint::SAMPLES;
+    let points: Vec<Value> = (0..n).map(|k| v(a.lerp(b, k as f64 / (n - 1) as f64))).collect();
+    let hits: Vec<Value> =
+        hits.iter().map(|&(face, distance, gap)| json!({"face": face, "distance": distance, "gap": gap})).collect();
+    json!({"points": points, "normals": vec![v(normal); n], "outward": vec![v(outward); n], "hits": vec![hits; n]})
+}
+
+/// The replies of a joints pass whose fused result has no free edge left: extend_edges (`strips` and `corners`
+/// made), one gather per patch, and the fuse.
+fn pass_replies(strips: usize, corners: usize, patches: usize) -> Vec<Value> {
+    let made = |k: usize| vec![json!({"area": 10.0, "error": null}); k];
+    let mut out = vec![json!({"handle": 20, "strips": made(strips), "corners": made(corners)})];
+    out.extend((0..patches).map(|p| json!({"handle": 30 + p, "faces": 1})));
+    let faces: Vec<Value> = (0..patches).map(|p| face(p, DVec3::Z)).collect();
+    out.push(json!({"handle": 40, "faces": faces, "edges": []}));
+    out
+}
+
+fn fused(faces: Vec<Value>, edges: Vec<Value>) -> Fused {
+    let wire: crate::kernel::protocol::Fused =
+        serde_json::from_value(json!({"handle": 1, "faces": faces, "edges": edges})).unwrap();
+    Fused::from(wire)
+}
+
+fn info(thickness: f64, wall: (usize, usize)) -> PatchInfo {
+    PatchInfo { thickness, to_mid: 0.0, solid: 0, reach: 4.5, on_rim: 0.2, junction: false, wall }
+}
+
+/// Runs stitch on `fused` (every piece kept) in a solid filling `solid` (origin, size), with the probes and pass
+/// replies scripted: the joints found and the kernel's requests.
+fn run(fused: &Fused, patches: &[PatchInfo], solid: (DVec3, DVec3), replies: Vec<Value>) -> (Stitched, FakeKernel) {
+    let mesh = SolidMesh::new(&synthetic::cuboid(solid.0, solid.1)).unwrap();
+    let mut kernel = FakeKernel::new(replies);
+    let keep = vec![true; fused.faces.len()];
+    let stitched = stitch(&mut kernel, fused, &keep, patches, &[mesh], 1e-4).unwrap();
+    assert!(kernel.replies.is_empty(), "every scripted reply was asked for");
+    (stitched, kernel)
+}
+
+fn extend_request(
+    kernel: &FakeKernel,
+) -> (Vec<crate::kernel::protocol::StripRequest>, Vec<crate::kernel::protocol::CornerRequest>) {
+    match kernel.requests.iter().find(|r| r.op() == "extend_edges") {
+        Some(Request::ExtendEdges { strips, corners, .. }) => (strips.clone(), corners.clone()),
+        _ => panic!("no extend_edges request"),
+    }
+}
+
+fn report(patches: Vec<usize>, kind: &'static str, edges: usize, length: f64) -> JointReport {
+    JointReport { patches, kind, status: "extended", edges, length }
+}
+
+#[test]
+fn a_rib_standing_on_a_plate_grows_onto_it_as_a_t_and_the_plates_rim_stays_free() {
+    // A plate 2 thick (mid-patch 0 at z = 1, out to its rim at x = 50) and a rib 2 thick standing on it (mid-patch
+    // 1 at x = 0, its bottom edge on the plate's top at z = 2). The rib's edge meets the plate's patch 1 below, on
+    // its face: a T, grown by the distance plus a quarter of the plate's thickness.
+    let rib = (DVec3::new(0.0, 0.0, 2.0), DVec3::new(0.0, 10.0, 2.0));
+    let rim = (DVec3::new(50.0, 0.0, 1.0), DVec3::new(50.0, 10.0, 1.0));
+    let fused =
+        fused(vec![face(0, DVec3::Z), face(1, DVec3::X)], vec![edge(rib.0, rib.1, &[1]), edge(rim.0, rim.1, &[0])]);
+    let probes = json!({"edges": [
+        probe(rib.0, rib.1, DVec3::X, -DVec3::Z, &[(0, 1.0, 0.0)]),
+        probe(rim.0, rim.1, DVec3::Z, DVec3::X, &[]),
+    ]});
+    let mut replies = vec![probes];
+    replies.extend(pass_replies(1, 0, 2));
+    let patches = [info(2.0, (1, 0)), info(2.0, (1, 1))];
+    let (stitched, kernel) =
+        run(&fused, &patches, (DVec3::new(-50.0, 0.0, 0.0), DVec3::new(100.0, 10.0, 2.0)), replies);
+
+    assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "gather", "fuse"]);
+    let (strips, corners) = extend_request(&kernel);
+    assert_eq!(strips.len(), 1, "the rim edge does not grow");
+    assert_eq!((strips[0].edge, strips[0].face, strips[0].onto_face), (0, 1, true));
+    assert!(strips[0].lengths.iter().all(|&l| (l - 1.5).abs() < 1e-12), "{:?}", strips[0].lengths);
+    assert!(corners.is_empty());
+    // Only the rib's patch has a strip to merge with its pieces.
+    let unify: Vec<bool> = kernel
+        .requests
+        .iter()
+        .filter_map(|r| match r {
+            Request::Gather { unify, .. } => Some(unify.is_some()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(unify, [false, true]);
+    assert_eq!(stitched.joints, [report(vec![1, 2], "t", 1, 10.0)]);
+    assert_eq!(stitched.free, FreeEdges::default(), "the fused result has no free edge left");
+}
+
+#[test]
+fn two_walls_meeting_at_a_corner_both_grow_past_each_other_as_an_l() {
+    // An L: a floor 2 thick (mid-patch 0 at z = 1, its edge at x = 2) and a wall 2 thick (mid-patch 1 at x = 1,
+    // its edge at z = 2). Each edge meets the other's support plane 1 away, a full unit past the other patch's
+    // face: an L, both growing by 1 plus a quarter thickness of overshoot.
+    let floor = (DVec3::new(2.0, 0.0, 1.0), DVec3::new(2.0, 10.0, 1.0));
+    let wall = (DVec3::new(1.0, 0.0, 2.0), DVec3::new(1.0, 10.0, 2.0));
+    let fused = fused(
+        vec![face(0, DVec3::Z), face(1, DVec3::X)],
+        vec![edge(floor.0, floor.1, &[0]), edge(wall.0, wall.1, &[1])],
+    );
+    let probes = json!({"edges": [
+        probe(floor.0, floor.1, DVec3::Z, -DVec3::X, &[(1, 1.0, 1.0)]),
+        probe(wall.0, wall.1, DVec3::X, -DVec3::Z, &[(0, 1.0, 1.0)]),
+    ]});
+    let mut replies = vec![probes];
+    replies.extend(pass_replies(2, 0, 2));
+    let patches = [info(2.0, (1, 0)), info(2.0, (1, 1))];
+    let (stitched, kernel) = run(&fused, &patches, (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies);
+
+    let (strips, corners) = extend_request(&kernel);
+    let grown: Vec<(usize, usize, bool)> = strips.iter().map(|s| (s.edge, s.face, s.onto_face)).collect();
+    assert_eq!(grown, [(0, 0, false), (1, 1, false)], "both edges grow toward each other, neither onto a face");
+    for s in &strips {
+        assert!(s.lengths.iter().all(|&l| (l - 1.5).abs() < 1e-12), "{:?}", s.lengths);
+    }
+    assert!(corners.is_empty(), "strips of different faces leave no notch");
+    assert_eq!(stitched.joints, [report(vec![1, 2], "l", 2, 20.0)]);
+}
+
+#[test]
+fn two_levels_of_a_wall_at_a_thickness_step_are_bridged_by_a_ramp() {
+    // One wall (solid 1, group 0) 2 thick for x < 20 (mid-patch 0 at z = 1) and 3 thick past it (mid-patch 1 at
+    // z = 1.5). Their edges at x = 20 face each other 0.5 apart and find no partner: a step higher than a tenth of
+    // the thinner wall, laid down into a ramp from the thin edge to half its thickness into the thick patch.
+    let thin = (DVec3::new(20.0, 0.0, 1.0), DVec3::new(20.0, 10.0, 1.0));
+    let thick = (DVec3::new(20.0, 0.0, 1.5), DVec3::new(20.0, 10.0, 1.5));
+    let fused = fused(
+        vec![face(0, DVec3::Z), face(1, DVec3::Z)],
+        vec![edge(thin.0, thin.1, &[0]), edge(thick.0, thick.1, &[1])],
+    );
+    let probes = json!({"edges": [
+        probe(thin.0, thin.1, DVec3::Z, DVec3::X, &[]),
+        probe(thick.0, thick.1, DVec3::Z, -DVec3::X, &[]),
+    ]});
+    let mut replies = vec![probes];
+    replies.extend(pass_replies(0, 1, 2));
+    let patches = [info(2.0, (1, 0)), info(3.0, (1, 0))];
+    let (stitched, kernel) = run(&fused, &patches, (DVec3::ZERO, DVec3::new(40.0, 10.0, 3.0)), replies);
+
+    let (strips, corners) = extend_request(&kernel);
+    assert!(strips.is_empty(), "bridged edges grow no strip");
+    assert_eq!(corners.len(), 1);
+    let expected = [
+        DVec3::new(20.0, 0.0, 1.0),
+        DVec3::new(21.0, 0.0, 1.5),
+        DVec3::new(21.0, 10.0, 1.5),
+        DVec3::new(20.0, 10.0, 1.0),
+    ];
+    for (got, want) in corners[0].points.iter().zip(expected) {
+        assert!(got.distance(want) < 1e-9, "{:?}", corners[0].points);
+    }
+    assert_eq!(corners[0].normal, DVec3::Z, "a ramp faces its patch's way");
+    // The ramp joins the thin level's patch: only its gather merges a strip.
+    let unify: Vec<bool> = kernel
+        .requests
+        .iter()
+        .filter_map(|r| match r {
+            Request::Gather { unify, .. } => Some(unify.is_some()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(unify, [true, false]);
+    assert_eq!(stitched.joints, [report(vec![1, 2], "step", 2, 20.0)]);
+}
