@@ -37,6 +37,7 @@ impl From<wire::Shells> for Shells {
     fn from(w: wire::Shells) -> Shells {
         Shells {
             handle: w.handle,
+            count: w.shells,
             faces: w.faces,
             valid: w.valid,
             invalid: w.invalid,

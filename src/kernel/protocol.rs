@@ -283,6 +283,7 @@ pub struct Fused {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct Shells {
     pub handle: u64,
+    pub shells: usize,
     pub faces: Vec<usize>,
     pub valid: bool,
     /// Faces (indices into `faces`) that fail the kernel's check on their own; empty when `valid`.

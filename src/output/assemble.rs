@@ -42,7 +42,7 @@ pub fn report(
     timings: Option<Timings>,
 ) -> Report {
     let Outcome { fused, keep, branches, joints, free, .. } = stitched;
-    let Assembled { shells, sets, .. } = assembled;
+    let Assembled { shells, .. } = assembled;
     let patches = patch_reports(made, &fused, &keep);
     if made.is_empty() {
         warnings.push(Warning {
@@ -53,7 +53,7 @@ pub fn report(
         });
     }
     let topology_patches = patches.iter().map(PatchReport::topology).collect();
-    let topology = topology::summarise(&fused, &keep, &shells, sets, topology_patches, &joints, free);
+    let topology = topology::summarise(&fused, &keep, &shells, topology_patches, &joints, free);
     Report {
         report_version: REPORT_VERSION,
         midsurf_version: env!("CARGO_PKG_VERSION"),
@@ -77,7 +77,7 @@ pub fn report(
         thickness_legend: thickness_legend(made),
         result: ResultSummary {
             faces: shells.faces.len(),
-            shells: sets,
+            shells: shells.count,
             valid: shells.valid,
             area: written_area(&shells, &fused),
             free_edges: free,

@@ -16,18 +16,17 @@ use crate::patch::make::Made;
 use crate::stitch::Outcome;
 use crate::trim::connected_sets;
 
-/// The shells made, how many, and the warning when the kernel finds them invalid.
+/// The shells made and the warning when the kernel finds them invalid.
 pub struct Assembled {
     pub shells: Shells,
-    pub sets: usize,
     pub warning: Option<Warning>,
 }
 
 pub fn make_shells<K: Kernel>(kernel: &mut K, stitched: &Outcome, fuzzy: f64) -> Result<Assembled, SidecarError> {
     let sets = connected_sets(&stitched.fused, &stitched.keep);
-    let shells = kernel.make_shells(stitched.fused.handle, sets.clone(), fuzzy)?;
+    let shells = kernel.make_shells(stitched.fused.handle, sets, fuzzy)?;
     let warning = invalid_output_warning(&shells, &stitched.fused);
-    Ok(Assembled { shells, sets: sets.len(), warning })
+    Ok(Assembled { shells, warning })
 }
 
 /// Writes the STEP (and the preview, when asked) to the files' temporaries, each face named after its patch.
@@ -110,7 +109,7 @@ mod tests {
     }
 
     fn shells(faces: Vec<usize>, valid: bool, invalid: Vec<usize>) -> Shells {
-        Shells { handle: 2, faces, valid, invalid, edges: 0, vertices: 0 }
+        Shells { handle: 2, count: 1, faces, valid, invalid, edges: 0, vertices: 0 }
     }
 
     #[test]

@@ -15,7 +15,7 @@ pub struct Topology {
     pub vertices: usize,
     /// V - E + F.
     pub euler: i64,
-    /// Connected sets of faces (shells): one per connected part wanted.
+    /// Shells written (edge-connected sets of faces): one per connected part wanted.
     pub components: usize,
     /// Edges shared by three or more faces (T- and X-joints).
     pub nonmanifold_edges: usize,
@@ -38,7 +38,6 @@ pub fn summarise(
     fused: &Fused,
     keep: &[bool],
     shells: &Shells,
-    components: usize,
     patches: Vec<TopologyPatch>,
     joints: &[JointReport],
     free: Option<FreeEdges>,
@@ -53,7 +52,7 @@ pub fn summarise(
         edges: shells.edges,
         vertices: shells.vertices,
         euler: shells.vertices as i64 - shells.edges as i64 + faces as i64,
-        components,
+        components: shells.count,
         nonmanifold_edges,
         free_edges: free.map(|f| FreeEdges {
             rim_length: round(f.rim_length, 2),
