@@ -97,6 +97,9 @@ pub struct BatchCli {
     /// Run again the parts that failed last time although nothing changed.
     #[arg(long)]
     pub retry_failed: bool,
+    /// Print the parts (after --shard) as JSON with the `run` options of each, and run nothing.
+    #[arg(long)]
+    pub plan: bool,
     /// Where the patches lie through their walls (see `run`), for parts whose manifest row does not say.
     #[arg(long, value_enum)]
     pub position: Option<Position>,
@@ -249,6 +252,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             shard: b.shard,
             force: b.force,
             retry_failed: b.retry_failed,
+            plan: b.plan,
         }),
     }
 }

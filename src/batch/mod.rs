@@ -34,6 +34,8 @@ pub struct BatchArgs {
     pub defaults: Options,
     /// Run every part, even those whose outputs are up to date.
     pub force: bool,
+    /// Print the parts (after --shard) as JSON, with the arguments each would run with; run nothing.
+    pub plan: bool,
     /// Run again the parts that failed with the same key (by default a failure is as reproducible as a
     /// success, and is kept).
     pub retry_failed: bool,
@@ -68,6 +70,16 @@ pub fn run(args: &BatchArgs) -> Result<Exit, Error> {
         Some(shard) => shard.select(parts),
         None => parts,
     };
+    if args.plan {
+        let list: Vec<serde_json::Value> = parts
+            .iter()
+            .map(|p| serde_json::json!({"part": p.name, "input": p.input.display().to_string(), "args": p.run_args()}))
+            .collect();
+        let text = serde_json::to_string_pretty(&list).expect("plans serialise") + "\n";
+        std::io::Write::write_all(&mut std::io::stdout(), text.as_bytes())
+            .map_err(|e| Error::output(Path::new("<stdout>"), e.to_string()))?;
+        return Ok(Exit::Clean);
+    }
     prepare_output(&args.source, &args.output)?;
     let exe =
         std::env::current_exe().map_err(|e| Error::input(Path::new("midsurf"), format!("cannot find itself: {e}")))?;
