@@ -110,7 +110,10 @@ def run(midsurf: str, step: Path, work: Path) -> dict:
 
 
 def show(row: dict) -> None:
-    f = lambda k, fmt: format(row[k], fmt) if row.get(k) is not None else "-"
+    def f(key: str, fmt: str) -> str:
+        width = "".join(c for c in fmt.split(".")[0] if c.isdigit())
+        return format(row[key], fmt) if row.get(key) is not None else format("-", f">{width}")
+
     print(f"{row['part']:<44} {f('faces', '>6')} {row['exit']:>4} {f('time_s', '>8.2f')} {f('floor_s', '>7.2f')} "
           f"{f('ratio', '>6.1f')} {f('rss_mb', '>8.0f')} {f('load_s', '>7.2f')} {f('stitch_s', '>8.2f')}", flush=True)
 
