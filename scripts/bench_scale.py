@@ -3,7 +3,8 @@
 Usage: .venv/bin/python scripts/bench_scale.py [--corpus DIR] [--holes 100,400,...] [--ribs 10,20,...]
                                                [--skip-corpus] [--skip-family] [--midsurf BIN]   (run by scripts/bench)
 
-Per part: wall time and peak memory of `midsurf run` (/usr/bin/time -f '%e %M'), its load and stitch stages
+Per part: wall time, CPU time (user + system, the sidecar's included: steadier than wall time on a shared
+machine) and peak memory of `midsurf run` (/usr/bin/time), its load and stitch stages
 (from the report), the I/O floor (import OCP + read the input STEP + write a STEP of the output's size, in a
 fresh Python: ../shared/eval/io_floor.py when present, else the same steps here) and time / floor. Then the
 corpus median and worst ratios, and per family the scaling exponent b of time ~ a * faces^b, fitted by least
@@ -93,11 +94,12 @@ def floor(step_in: Path, step_out: Path) -> float | None:
 
 def run(midsurf: str, step: Path, work: Path) -> dict:
     out, report, timing = work / f"{step.stem}.step", work / f"{step.stem}.json", work / f"{step.stem}.time"
-    cmd = ["/usr/bin/time", "-f", "%e %M", "-o", str(timing), midsurf, "run", str(step), "-o", str(out),
+    cmd = ["/usr/bin/time", "-f", "%e %U %S %M", "-o", str(timing), midsurf, "run", str(step), "-o", str(out),
            "--report", str(report)]
     done = subprocess.run(cmd, capture_output=True, text=True)
-    wall, rss_kb = timing.read_text().strip().splitlines()[-1].split()
-    row = {"part": step.stem, "exit": done.returncode, "time_s": float(wall), "rss_mb": int(rss_kb) / 1024}
+    wall, user, system, rss_kb = timing.read_text().strip().splitlines()[-1].split()
+    row = {"part": step.stem, "exit": done.returncode, "time_s": float(wall), "cpu_s": float(user) + float(system),
+           "rss_mb": int(rss_kb) / 1024}
     if report.is_file():
         r = json.loads(report.read_text())
         row["faces"] = sum(s["faces"] for s in r["solids"])
@@ -114,7 +116,8 @@ def show(row: dict) -> None:
         width = "".join(c for c in fmt.split(".")[0] if c.isdigit())
         return format(row[key], fmt) if row.get(key) is not None else format("-", f">{width}")
 
-    print(f"{row['part']:<44} {f('faces', '>6')} {row['exit']:>4} {f('time_s', '>8.2f')} {f('floor_s', '>7.2f')} "
+    print(f"{row['part']:<44} {f('faces', '>6')} {row['exit']:>4} {f('time_s', '>8.2f')} {f('cpu_s', '>7.2f')} "
+          f"{f('floor_s', '>7.2f')} "
           f"{f('ratio', '>6.1f')} {f('rss_mb', '>8.0f')} {f('load_s', '>7.2f')} {f('stitch_s', '>8.2f')}", flush=True)
 
 
@@ -138,7 +141,7 @@ def main() -> int:
     args = parser.parse_args()
     CACHE.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix="midsurf-bench-"))
-    header = f"{'part':<44} {'faces':>6} {'exit':>4} {'time_s':>8} {'floor_s':>7} {'ratio':>6} {'rss_MB':>8} " \
+    header = f"{'part':<44} {'faces':>6} {'exit':>4} {'time_s':>8} {'cpu_s':>7} {'floor_s':>7} {'ratio':>6} {'rss_MB':>8} " \
              f"{'load_s':>7} {'stitch_s':>8}"
     if not args.skip_corpus and args.corpus.is_dir():
         print(f"corpus {args.corpus}\n{header}", flush=True)
@@ -161,9 +164,9 @@ def main() -> int:
             for step in parts:
                 rows.append(run(args.midsurf, step, work))
                 show(rows[-1])
-            b, bl = exponent(rows, "time_s"), exponent(rows, "load_s")
+            b, bc, bl = exponent(rows, "time_s"), exponent(rows, "cpu_s"), exponent(rows, "load_s")
             fmt = lambda v: f"{v:.2f}" if v is not None else "-"
-            print(f"{name}: scaling exponent in faces: time {fmt(b)}, load {fmt(bl)}", flush=True)
+            print(f"{name}: scaling exponent in faces: time {fmt(b)}, cpu {fmt(bc)}, load {fmt(bl)}", flush=True)
     return 0
 
 
