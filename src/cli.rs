@@ -64,6 +64,75 @@ pub enum Command {
         #[command(flatten)]
         pairing: PairingArgs,
     },
+    /// Make the mid-surfaces of many parts: every STEP file of a folder, or the parts of a manifest (CSV
+    /// with a header, or JSON: column or key `input`, optional `name` and any of the `run` options per part,
+    /// e.g. `input,t_max,keep_holes`). Per part, in the output folder: NAME.step and NAME.json as `midsurf run`
+    /// writes them, NAME.log (its messages); and one summary, batch-summary.csv and .json (exit code,
+    /// warnings, patches, self-check figures of the report, time per part).
+    ///
+    /// Resumable: a part whose input content, options and midsurf (executable and sidecar) are unchanged and
+    /// whose outputs exist is not run again. Exit code: the worst of the parts'.
+    Batch(BatchCli),
+}
+
+/// Arguments of `midsurf batch`.
+#[derive(Debug, clap::Args)]
+pub struct BatchCli {
+    /// A folder of STEP files (*.step, *.stp), or a manifest (.csv or .json).
+    pub inputs: PathBuf,
+    /// The output folder (made if missing; never the input folder).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Parts run at once (each a `midsurf run` with its own sidecar): up to one per core.
+    #[arg(short, long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    pub jobs: u32,
+    /// Run only shard I of N (1 <= I <= N): parts sorted by name, every N-th from the I-th, so that the N
+    /// tasks of a job array (Slurm --array=1-N, PBS -J 1-N) cover every part once. The summary is then
+    /// batch-summary-I-of-N.*.
+    #[arg(long, value_parser = crate::batch::inputs::Shard::parse)]
+    pub shard: Option<crate::batch::inputs::Shard>,
+    /// Run every part, even those whose outputs are up to date.
+    #[arg(long)]
+    pub force: bool,
+    /// Run again the parts that failed last time although nothing changed.
+    #[arg(long)]
+    pub retry_failed: bool,
+    /// Print the parts (after --shard) as JSON with the `run` options of each, and run nothing.
+    #[arg(long)]
+    pub plan: bool,
+    /// Where the patches lie through their walls (see `run`), for parts whose manifest row does not say.
+    #[arg(long, value_enum)]
+    pub position: Option<Position>,
+    /// Pairing options for every part whose manifest row does not set its own (see `run`).
+    #[command(flatten)]
+    pub pairing: PairingArgs,
+}
+
+impl BatchCli {
+    /// The batch-wide options as `midsurf run` flag values.
+    fn defaults(&self) -> crate::batch::inputs::Options {
+        let p = &self.pairing;
+        let mut o = crate::batch::inputs::Options::new();
+        let mut put = |flag: &str, v: Option<f64>| {
+            if let Some(v) = v {
+                o.insert(flag.to_string(), v.to_string());
+            }
+        };
+        put("t-max", p.t_max);
+        put("draft-max", Some(p.draft_max).filter(|d| *d != crate::tolerance::DEFAULT_DRAFT_MAX_DEG));
+        put("fillet-max", p.fillet_max);
+        put("hole-max", p.hole_max);
+        put("boss-max", p.boss_max);
+        if p.keep_holes {
+            o.insert("keep-holes".into(), "true".into());
+        }
+        if let Some(pos) = self.position {
+            use clap::ValueEnum;
+            let name = pos.to_possible_value().expect("positions all have names").get_name().to_string();
+            o.insert("position".into(), name);
+        }
+        o
+    }
 }
 
 /// Arguments of `midsurf run`.
@@ -174,6 +243,16 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             params: r.pairing.params(),
             position: r.position.into(),
             timings: !r.no_timings,
+        }),
+        Command::Batch(b) => crate::batch::run(&crate::batch::BatchArgs {
+            defaults: b.defaults(),
+            source: b.inputs,
+            output: b.output,
+            jobs: b.jobs as usize,
+            shard: b.shard,
+            force: b.force,
+            retry_failed: b.retry_failed,
+            plan: b.plan,
         }),
     }
 }

@@ -12,6 +12,7 @@
 //! [`geom`] holds the small geometric computations done in Rust.
 
 // Public: what main.rs (cli, exit) and the pairing benchmark (model, pairing, synthetic) use.
+pub(crate) mod batch;
 pub mod cli;
 pub(crate) mod error;
 pub mod exit;
