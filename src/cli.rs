@@ -102,7 +102,7 @@ pub struct BatchCli {
     pub plan: bool,
     /// Where the patches lie through their walls (see `run`), for parts whose manifest row does not say.
     #[arg(long, value_enum)]
-    pub position: Option<Position>,
+    pub position: Option<PositionArg>,
     /// Pairing options for every part whose manifest row does not set its own (see `run`).
     #[command(flatten)]
     pub pairing: PairingArgs,
@@ -119,7 +119,7 @@ impl BatchCli {
             }
         };
         put("t-max", p.t_max);
-        put("draft-max", Some(p.draft_max).filter(|d| *d != crate::tolerance::DEFAULT_DRAFT_MAX_DEG));
+        put("draft-max", Some(p.draft_max).filter(|d| *d != crate::model::tolerance::DEFAULT_DRAFT_MAX_DEG));
         put("fillet-max", p.fillet_max);
         put("hole-max", p.hole_max);
         put("boss-max", p.boss_max);

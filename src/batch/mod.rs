@@ -84,7 +84,7 @@ pub fn run(args: &BatchArgs) -> Result<Exit, Error> {
     let exe =
         std::env::current_exe().map_err(|e| Error::input(Path::new("midsurf"), format!("cannot find itself: {e}")))?;
     let root =
-        crate::sidecar::python::project_root(std::env::var_os("MIDSURF_ROOT").map(PathBuf::from), Some(exe.clone()));
+        crate::kernel::python::project_root(std::env::var_os("MIDSURF_ROOT").map(PathBuf::from), Some(exe.clone()));
     let package = root.map(|r| r.join("sidecar/midsurf_sidecar"));
     let code =
         key::code_sha256(&exe, package.as_deref()).map_err(|e| Error::input(&exe, format!("cannot hash: {e}")))?;

@@ -6,7 +6,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
-use crate::output::Pending;
+use crate::output::pending::Pending;
 
 /// One part's outcome. The figures come from its report (`result`, `topology`, `solids`), absent when the
 /// run failed.
