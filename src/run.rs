@@ -14,7 +14,7 @@ use crate::part::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote, Position};
 use crate::patch::trim::{connected_sets, find_branches, keep_mask};
 use crate::report::{self, *};
-use crate::sidecar::protocol::{Clip, FaceAttributes, Fused, MadePatch, Request, Shells, Written};
+use crate::sidecar::protocol::{Clip, FaceAttributes, Fused, KeptSolid, MadePatch, Request, Shells, Written};
 use crate::stitch::{branch_limits, stitch, FreeEdges, JointReport, PatchInfo};
 
 pub struct RunArgs {
@@ -27,6 +27,8 @@ pub struct RunArgs {
     pub params: PairingParams,
     pub position: Position,
     pub timings: bool,
+    /// Write the solids that are not thin-walled into the output STEP as solids.
+    pub keep_solids: bool,
 }
 
 /// A patch made in the sidecar, with what it came from.
@@ -109,7 +111,9 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     timings.patches = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let fuzzy = pairings.iter().map(|p| p.tolerances.fuse).fold(f64::INFINITY, f64::min);
+    // Solids that are not thin-walled have no patch to fuse: their tolerances say nothing here.
+    let fuzzy =
+        pairings.iter().filter(|p| p.class.is_thin_walled()).map(|p| p.tolerances.fuse).fold(f64::INFINITY, f64::min);
     let fuzzy = if fuzzy.is_finite() { fuzzy } else { 0.0 };
     let fused: Fused = sidecar
         .call(&Request::Fuse { patches: made.iter().map(|m| m.handle).collect(), fuzzy, split_internal: false })
@@ -200,8 +204,15 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         p.temp.to_str().map(str::to_string).ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
     };
     let preview = preview_out.as_ref().map(utf8).transpose()?;
+    let kept = if args.keep_solids { kept_solids(&part, &pairings) } else { Vec::new() };
     sidecar
-        .call::<Written>(&Request::WriteStep { path: utf8(&step_out)?, handle: shells.handle, faces, preview })
+        .call::<Written>(&Request::WriteStep {
+            path: utf8(&step_out)?,
+            handle: shells.handle,
+            faces,
+            preview,
+            solids: kept.clone(),
+        })
         .map_err(kernel)?;
     sidecar.shutdown();
     timings.write = t.elapsed().as_secs_f64();
@@ -223,7 +234,10 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
             .iter()
             .zip(&pairings)
             .enumerate()
-            .map(|(i, (s, sp))| solid_report(i + 1, &s.graph, sp))
+            .map(|(i, (s, sp))| SolidReport {
+                kept_as_solid: kept.iter().any(|k| k.handle == s.handle),
+                ..solid_report(i + 1, &s.graph, sp)
+            })
             .collect(),
         patches,
         trimmed: branches.iter().map(TrimmedReport::from_branch).collect(),
@@ -247,7 +261,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
         pending.write(report.topology.text().as_bytes())?;
     }
     if let Some(pending) = &csv_out {
-        pending.write(report::patches_csv(&report.patches).as_bytes())?;
+        pending.write(report::patches_csv(&report.patches, &report.solids).as_bytes())?;
     }
     step_out.commit()?;
     for pending in [report_out, summary_out, csv_out, preview_out].into_iter().flatten() {
@@ -255,6 +269,17 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     }
     eprintln!("{}", summary_line(&args.output, &report));
     Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })
+}
+
+/// The solids that are not thin-walled, to be written as they are beside the mid-surface (--keep-solids).
+fn kept_solids(part: &crate::part::Part, pairings: &[SolidPairing]) -> Vec<KeptSolid> {
+    part.solids
+        .iter()
+        .zip(pairings)
+        .enumerate()
+        .filter(|(_, (_, sp))| !sp.class.is_thin_walled())
+        .map(|(i, (s, _))| KeptSolid { handle: s.handle, name: format!("solid {} not_thin_walled", i + 1) })
+        .collect()
 }
 
 fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
@@ -429,6 +454,8 @@ fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidRepo
     let roles = RoleCounts::of(&sp.pairing.roles);
     SolidReport {
         solid,
+        class: sp.class,
+        kept_as_solid: false,
         faces: graph.faces.len(),
         volume: graph.volume,
         area: graph.area,

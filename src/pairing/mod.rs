@@ -9,6 +9,7 @@ pub mod criteria;
 pub mod estimate;
 pub mod groups;
 pub mod overlap;
+pub mod wall_class;
 
 use serde::Serialize;
 

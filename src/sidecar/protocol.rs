@@ -17,6 +17,13 @@ pub struct FaceAttributes {
     pub thickness: f64,
 }
 
+/// A solid of the input written as it is beside the mid-surface (one that is not thin-walled), named.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct KeptSolid {
+    pub handle: u64,
+    pub name: String,
+}
+
 /// Where a mid-patch goes: its faces offset along their outward normals, or projected onto a plane.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -140,6 +147,9 @@ pub enum Request {
         faces: Vec<FaceAttributes>,
         #[serde(skip_serializing_if = "Option::is_none")]
         preview: Option<String>,
+        /// Solids of the input written too, each as its own named shape.
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        solids: Vec<KeptSolid>,
     },
     Free {
         handles: Vec<u64>,
@@ -361,12 +371,29 @@ mod tests {
                         thickness: 2.0,
                     }],
                     preview: None,
+                    solids: vec![],
                 },
                 r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[{"face":0,"name":"patch 1 t=2.000","color":[1.0,0.5,0.0],"thickness":2.0}]}}"#,
             ),
             (
-                Request::WriteStep { path: "o.step".into(), handle: 7, faces: vec![], preview: Some("o.glb".into()) },
+                Request::WriteStep {
+                    path: "o.step".into(),
+                    handle: 7,
+                    faces: vec![],
+                    preview: Some("o.glb".into()),
+                    solids: vec![],
+                },
                 r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"preview":"o.glb"}}"#,
+            ),
+            (
+                Request::WriteStep {
+                    path: "o.step".into(),
+                    handle: 7,
+                    faces: vec![],
+                    preview: None,
+                    solids: vec![KeptSolid { handle: 3, name: "solid 2 not_thin_walled".into() }],
+                },
+                r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"solids":[{"handle":3,"name":"solid 2 not_thin_walled"}]}}"#,
             ),
             (
                 Request::MakePatch {
