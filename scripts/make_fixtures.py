@@ -4,7 +4,8 @@ Usage:
     .venv/bin/python scripts/make_fixtures.py [OUT_DIR]           # parts, default fixtures/
     .venv/bin/python scripts/make_fixtures.py --bad-inputs [DIR]  # bad inputs, default tests/data/
 
-Every part is one closed solid in millimetres, placed in the first octant with a corner at the origin. Each
+Every part is one closed solid in millimetres (an assembly: a compound of several), placed in the first octant
+with a corner at the origin. Each
 file is read back with plain OCP (reader status, one solid, face count, BRepCheck validity, volume against
 the hand-computed one) before its line is printed, so a wrong fixture stops the script. The STEP header
 carries a fixed timestamp, so re-running the script reproduces the files byte for byte.
@@ -22,7 +23,7 @@ from dataclasses import dataclass
 from io import BytesIO
 from pathlib import Path
 
-from build123d import Axis, Edge, Face, Plane, Shape, Solid, Vector, Wire, export_step
+from build123d import Axis, Compound, Edge, Face, Plane, Shape, Solid, Vector, Wire, export_step
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.GProp import GProp_GProps
@@ -48,9 +49,11 @@ VOLUME_RELATIVE_TOLERANCE = 1e-9
 class Fixture:
     """A part and what reading its STEP file back must give."""
 
-    solid: Solid
+    solid: Solid | Compound
     volume: float
     faces: int
+    # More than one: an assembly, written as a compound of that many solids.
+    solids: int = 1
 
 
 def box(x0: float, y0: float, z0: float, dx: float, dy: float, dz: float) -> Solid:
@@ -354,6 +357,19 @@ def pipe_tee() -> Fixture:
     return Fixture(single_solid(part), filled - bore, 7)
 
 
+def cover_pin() -> Fixture:
+    """An assembly of a thin-walled cover and a solid pin: a box 80 x 60 x 20 open at the bottom, walls and top
+    2 thick, with a hole D 6.4 through its top at (40, 30), and a solid pin D 6 x 26 (z from 4 to 30) standing
+    through the hole without touching it. The pin is chunky (2V/A 2.61 over its 6 mm width: 0.43): it gets no
+    mid-surface, the cover gets one. Two solids. Faces: 12 (cover: 5 outside, 5 inside, the bottom rim, the
+    hole) + 3 (pin). Volume: 80 * 60 * 20 - 76 * 56 * 18 - pi * 3.2^2 * 2 + pi * 3^2 * 26.
+    """
+    cover = box(0, 0, 0, 80, 60, 20) - box(2, 2, 0, 76, 56, 18) - cylinder_z(40, 30, 18, 3.2, 2)
+    pin = cylinder_z(40, 30, 4, 3, 26)
+    volume = 80 * 60 * 20 - 76 * 56 * 18 - math.pi * 3.2**2 * 2 + math.pi * 3**2 * 26
+    return Fixture(Compound([single_solid(cover), pin]), volume, 15, solids=2)
+
+
 PARTS: list[Callable[[], Fixture]] = [
     flat_plate,
     l_bracket,
@@ -374,6 +390,7 @@ PARTS: list[Callable[[], Fixture]] = [
     t_rib_rounded,
     plate_step,
     pipe_tee,
+    cover_pin,
 ]
 
 
@@ -427,8 +444,10 @@ def check_fixture(path: Path, fixture: Fixture) -> ReadBack:
     """Read a written fixture back and raise on any difference from what the part function promised."""
     got = read_back(path)
     problems = []
-    if got.root != TopAbs_SOLID or got.solids != 1:
+    if fixture.solids == 1 and (got.root != TopAbs_SOLID or got.solids != 1):
         problems.append(f"{got.solids} solids under a {got.root.name}, want one bare solid (no assembly)")
+    if fixture.solids > 1 and got.solids != fixture.solids:
+        problems.append(f"{got.solids} solids, want {fixture.solids}")
     if got.faces != fixture.faces:
         problems.append(f"{got.faces} faces, want {fixture.faces}")
     if not got.valid:

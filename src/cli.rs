@@ -164,6 +164,11 @@ pub struct RunCli {
     /// Leave the time per stage out of the report, so that two runs give byte-identical reports.
     #[arg(long)]
     pub no_timings: bool,
+    /// Write the solids that are not thin-walled (pins, screws, solid blocks: no mid-surface, see the report's
+    /// solids[].class) into the output STEP as the solids they are, named "solid <n> not_thin_walled", so that
+    /// the model stays complete for meshing them as solids or beams.
+    #[arg(long)]
+    pub keep_solids: bool,
     #[command(flatten)]
     pub pairing: PairingArgs,
 }
@@ -243,6 +248,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             params: r.pairing.params(),
             position: r.position.into(),
             timings: !r.no_timings,
+            keep_solids: r.keep_solids,
         }),
         Command::Batch(b) => crate::batch::run(&crate::batch::BatchArgs {
             defaults: b.defaults(),

@@ -28,6 +28,8 @@ pub struct RunArgs {
     pub params: PairingParams,
     pub position: Position,
     pub timings: bool,
+    /// Write the solids that are not thin-walled into the output STEP as solids.
+    pub keep_solids: bool,
 }
 
 pub fn run(args: &RunArgs) -> Result<Exit, Error> {
@@ -51,7 +53,8 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     timings.patches = since(t);
 
     let t = Instant::now();
-    let fuzzy = tolerance::part_fuse(pairings.iter().map(|p| &p.tolerances));
+    // Solids that are not thin-walled have no patch to fuse: their tolerances say nothing here.
+    let fuzzy = tolerance::part_fuse(pairings.iter().filter(|p| p.class.is_thin_walled()).map(|p| &p.tolerances));
     let infos = stitch::patch_infos(&part, &pairings, &patches.made, args.position);
     let handles = patches.made.iter().map(|m| m.handle).collect();
     let trimmed = trim::fuse_and_trim(&mut kernel, handles, fuzzy, &stitch::branch_limits(&infos)).map_err(failed)?;
@@ -69,12 +72,19 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let t = Instant::now();
     let legend = assemble::thickness_legend(&patches.made);
     let (fused, made) = (&stitched.fused, &patches.made);
-    shells::write_step(&mut kernel, &files, made, fused, &assembled.shells, &legend, &args.input)?;
+    let kept = if args.keep_solids { shells::kept_solids(&part, &pairings) } else { Vec::new() };
+    shells::write_step(&mut kernel, &files, made, fused, &assembled.shells, &legend, kept, &args.input)?;
     kernel.shutdown();
     timings.write = since(t);
     timings.total = since(started);
 
-    let asked = Asked { input: &args.input, output: &args.output, params: args.params, position: args.position };
+    let asked = Asked {
+        input: &args.input,
+        output: &args.output,
+        params: args.params,
+        position: args.position,
+        keep_solids: args.keep_solids,
+    };
     let timings = args.timings.then_some(timings);
     let report = assemble::report(&asked, &part, &pairings, made, stitched, assembled, warnings, timings);
     files.finish(&report)?;

@@ -128,6 +128,31 @@ fn no_pairs_gives_an_empty_valid_output_and_exit_1() {
 }
 
 #[test]
+fn a_solid_that_is_not_thin_walled_gets_no_patch_and_is_kept_on_request() {
+    let dir = scratch("run-chunky");
+    let (out, rep, csv) = (dir.join("mid.step"), dir.join("r.json"), dir.join("p.csv"));
+    let o = run("fixtures/cover_pin.step", &out, &rep, &["--csv", csv.to_str().unwrap()]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let report = read_json(&rep);
+    let class = |s: usize| report["solids"][s]["class"]["kind"].as_str().unwrap().to_string();
+    assert_eq!((class(0), class(1)), ("thin_walled".into(), "not_thin_walled".into()));
+    let patches = report["patches"].as_array().unwrap();
+    assert!(!patches.is_empty() && patches.iter().all(|p| p["solid"] == 1), "the pin gets no patch");
+    assert_eq!(report["solids"][1]["kept_as_solid"], false);
+    let csv = std::fs::read_to_string(&csv).unwrap();
+    assert!(csv.lines().last().unwrap().starts_with(",2,not_thin_walled,2.690,"), "{csv}");
+    assert!(!std::fs::read_to_string(&out).unwrap().contains("MANIFOLD_SOLID_BREP"));
+
+    let o = run("fixtures/cover_pin.step", &out, &rep, &["--keep-solids"]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let report = read_json(&rep);
+    assert_eq!(report["solids"][1]["kept_as_solid"], true);
+    let step = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(step.matches("MANIFOLD_SOLID_BREP").count(), 1, "the pin, as a solid");
+    assert!(step.contains("solid 2 not_thin_walled"));
+}
+
+#[test]
 fn bad_input_writes_nothing() {
     let dir = scratch("run-bad");
     let (out, rep) = (dir.join("mid.step"), dir.join("report.json"));

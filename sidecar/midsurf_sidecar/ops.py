@@ -147,7 +147,18 @@ def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     preview = args.get("preview")
     if preview is not None and not isinstance(preview, str):
         raise BadArgs(f"`preview` must be a path string, got {preview!r}")
-    return {"path": path, "bytes": step_writer.write_step(path, shape, faces, preview)}
+    kept = args.get("solids", [])
+    if not isinstance(kept, list):
+        raise BadArgs(f"`solids` must be a list, got {kept!r}")
+    solids = [_kept_solid(store, entry) for entry in kept]
+    return {"path": path, "bytes": step_writer.write_step(path, shape, faces, preview, solids)}
+
+
+def _kept_solid(store: HandleStore, entry: Any) -> tuple[str, TopoDS_Shape]:
+    """A solid written as it is beside the mid-surface: (name, shape)."""
+    if not isinstance(entry, dict) or not isinstance(entry.get("name"), str):
+        raise BadArgs(f"each of `solids` must be an object with a handle and a name, got {entry!r}")
+    return entry["name"], store.get(require_handle(entry))
 
 
 def _face_attributes(entry: Any) -> step_writer.FaceAttributes:

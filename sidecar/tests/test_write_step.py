@@ -95,6 +95,20 @@ def test_no_faces_writes_a_plain_step(client, tmp_path):
     assert client.ok("load_step", path=str(path))["solids"][0]["faces"] == 6
 
 
+def test_kept_solids_follow_as_named_solids(client, tmp_path):
+    shell = client.load(box(), tmp_path)
+    solid = client.load(box(), tmp_path)
+    path = tmp_path / "kept.step"
+    faces = [{"face": 2, "name": "patch 1 t=2.000"}]
+    kept = [{"handle": solid, "name": "solid 2 not_thin_walled"}]
+    client.ok("write_step", path=str(path), handle=shell, faces=faces, solids=kept)
+    # The first shape keeps its face indices and names; the kept one is a solid of its own.
+    assert client.ok("load_step", path=str(path))["solids"][1]["faces"] == 6
+    assert "solid 2 not_thin_walled" in path.read_text()
+    err = client.err("write_step", path=str(path), handle=shell, faces=[], solids=[{"handle": solid}])
+    assert err["code"] == "bad_args"
+
+
 def test_missing_directory_is_write_failed(client, tmp_path):
     handle = client.load(box(), tmp_path)
     err = client.err("write_step", path=str(tmp_path / "no" / "such" / "dir.step"), handle=handle, faces=[])

@@ -17,6 +17,13 @@ pub struct FaceAttributes {
     pub thickness: f64,
 }
 
+/// A solid of the input written as it is beside the mid-surface (one that is not thin-walled), named.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct KeptSolid {
+    pub handle: u64,
+    pub name: String,
+}
+
 /// Where a mid-patch goes: its faces offset along their outward normals, or projected onto a plane.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -142,6 +149,9 @@ pub enum Request {
         faces: Vec<FaceAttributes>,
         #[serde(skip_serializing_if = "Option::is_none")]
         preview: Option<String>,
+        /// Solids of the input written too, each as its own named shape.
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        solids: Vec<KeptSolid>,
     },
     /// Frees kernel shapes; midsurf runs one part per process and sends none.
     #[allow(dead_code)]

@@ -24,12 +24,29 @@ fn requests_encode_as_exact_json() {
                     thickness: 2.0,
                 }],
                 preview: None,
+                solids: vec![],
             },
             r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[{"face":0,"name":"patch 1 t=2.000","color":[1.0,0.5,0.0],"thickness":2.0}]}}"#,
         ),
         (
-            Request::WriteStep { path: "o.step".into(), handle: 7, faces: vec![], preview: Some("o.glb".into()) },
+            Request::WriteStep {
+                path: "o.step".into(),
+                handle: 7,
+                faces: vec![],
+                preview: Some("o.glb".into()),
+                solids: vec![],
+            },
             r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"preview":"o.glb"}}"#,
+        ),
+        (
+            Request::WriteStep {
+                path: "o.step".into(),
+                handle: 7,
+                faces: vec![],
+                preview: None,
+                solids: vec![KeptSolid { handle: 3, name: "solid 2 not_thin_walled".into() }],
+            },
+            r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"solids":[{"handle":3,"name":"solid 2 not_thin_walled"}]}}"#,
         ),
         (
             Request::MakePatch {

@@ -22,6 +22,8 @@ pub struct Asked<'a> {
     pub output: &'a Path,
     pub params: PairingParams,
     pub position: Position,
+    /// The solids that are not thin-walled are written as solids (--keep-solids).
+    pub keep_solids: bool,
 }
 
 /// The thickness legend of the made patches: one colour band per distinct thickness.
@@ -69,7 +71,10 @@ pub fn report(
             .iter()
             .zip(pairings)
             .enumerate()
-            .map(|(i, (s, sp))| solid_report(i + 1, &s.graph, sp))
+            .map(|(i, (s, sp))| SolidReport {
+                kept_as_solid: asked.keep_solids && !sp.class.is_thin_walled(),
+                ..solid_report(i + 1, &s.graph, sp)
+            })
             .collect(),
         patches,
         trimmed: branches.iter().map(TrimmedReport::from_branch).collect(),
@@ -140,6 +145,8 @@ fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidRepo
     let roles = RoleCounts::of(&sp.pairing.roles);
     SolidReport {
         solid,
+        class: sp.class,
+        kept_as_solid: false,
         faces: graph.faces.len(),
         volume: graph.volume,
         area: graph.area,

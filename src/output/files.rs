@@ -39,7 +39,7 @@ impl Files {
             pending.write(report.topology.text().as_bytes())?;
         }
         if let Some(pending) = &self.csv {
-            pending.write(patches_csv(&report.patches).as_bytes())?;
+            pending.write(patches_csv(&report.patches, &report.solids).as_bytes())?;
         }
         self.step.commit()?;
         for pending in [self.report, self.summary, self.csv, self.preview].into_iter().flatten() {

@@ -19,6 +19,10 @@ fn faces_list(ids: &[usize]) -> String {
 /// The table `midsurf pairs` prints for one solid.
 pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairing) {
     let p = &sp.pairing;
+    if !sp.class.is_thin_walled() {
+        writeln!(out, "solid {}: {} faces; {}; no patch", index + 1, graph.faces.len(), sp.class.describe()).unwrap();
+        return;
+    }
     writeln!(
         out,
         "solid {}: {} faces; t_max {:.4} mm ({}); draft_max {:.2} deg",

@@ -50,6 +50,10 @@ pub struct Parameters {
 pub struct SolidReport {
     /// 1-based, in the order of the STEP file.
     pub solid: usize,
+    /// Thin-walled or not (chunky, with the measure): a solid that is not thin-walled gets no patch.
+    pub class: crate::pairing::wall_class::WallClass,
+    /// Written into the output STEP as the solid it is (--keep-solids, solids that are not thin-walled).
+    pub kept_as_solid: bool,
     pub faces: usize,
     pub volume: f64,
     pub area: f64,
@@ -209,8 +213,10 @@ pub fn band_color(legend: &[LegendEntry], t: f64) -> [f64; 3] {
 }
 
 /// The patches as CSV, one row per patch in id order: `patch,solid,kind,thickness,area,faces,source_faces`
-/// (thickness in mm to 0.001, area in mm² to 0.01, source faces 0-based and separated by spaces).
-pub fn patches_csv(patches: &[PatchReport]) -> String {
+/// (thickness in mm to 0.001, area in mm² to 0.01, source faces 0-based and separated by spaces); then one row
+/// per solid that is not thin-walled, with no patch id, kind `not_thin_walled`, its 2V/A as thickness, its
+/// area and no faces: every solid of the part shows in the table.
+pub fn patches_csv(patches: &[PatchReport], solids: &[SolidReport]) -> String {
     let mut out = String::from("patch,solid,kind,thickness,area,faces,source_faces\n");
     for p in patches {
         let sources: Vec<String> = p.source_faces.iter().map(|f| f.to_string()).collect();
@@ -224,6 +230,9 @@ pub fn patches_csv(patches: &[PatchReport]) -> String {
             p.faces,
             sources.join(" ")
         );
+    }
+    for s in solids.iter().filter(|s| !s.class.is_thin_walled()) {
+        out += &format!(",{},not_thin_walled,{:.3},{:.2},0,\n", s.solid, s.class.thickness, s.area);
     }
     out
 }
@@ -244,8 +253,10 @@ mod tests {
             area: 12.345,
             faces: 2,
         };
-        let csv =
-            patches_csv(&[patch(1, PairKind::Parallel, 2.0, vec![3, 7]), patch(2, PairKind::Draft, 1.25, vec![0])]);
+        let csv = patches_csv(
+            &[patch(1, PairKind::Parallel, 2.0, vec![3, 7]), patch(2, PairKind::Draft, 1.25, vec![0])],
+            &[],
+        );
         assert_eq!(
             csv,
             "patch,solid,kind,thickness,area,faces,source_faces\n1,1,parallel,2.000,12.35,2,3 7\n2,1,draft,1.250,12.35,2,0\n"

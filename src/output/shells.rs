@@ -8,10 +8,12 @@ use super::files::Files;
 use super::pending::Pending;
 use super::report::{band_color, LegendEntry};
 use crate::error::Error;
-use crate::kernel::protocol::{FaceAttributes, Request, Written};
+use crate::kernel::protocol::{FaceAttributes, KeptSolid, Request, Written};
 use crate::kernel::{Kernel, SidecarError};
 use crate::model::shapes::{Fused, Shells};
 use crate::model::warning::{patch_list, Warning};
+use crate::load::Part;
+use crate::pairing::driver::SolidPairing;
 use crate::patch::make::Made;
 use crate::stitch::Outcome;
 use crate::trim::connected_sets;
@@ -29,7 +31,20 @@ pub fn make_shells<K: Kernel>(kernel: &mut K, stitched: &Outcome, fuzzy: f64) ->
     Ok(Assembled { shells, warning })
 }
 
-/// Writes the STEP (and the preview, when asked) to the files' temporaries, each face named after its patch.
+/// The solids that are not thin-walled, to be written as they are beside the mid-surface (--keep-solids).
+pub fn kept_solids(part: &Part, pairings: &[SolidPairing]) -> Vec<KeptSolid> {
+    part.solids
+        .iter()
+        .zip(pairings)
+        .enumerate()
+        .filter(|(_, (_, sp))| !sp.class.is_thin_walled())
+        .map(|(i, (s, _))| KeptSolid { handle: s.handle, name: format!("solid {} not_thin_walled", i + 1) })
+        .collect()
+}
+
+/// Writes the STEP (and the preview, when asked) to the files' temporaries, each face named after its patch,
+/// then the solids kept as they are.
+#[allow(clippy::too_many_arguments)]
 pub fn write_step<K: Kernel>(
     kernel: &mut K,
     files: &Files,
@@ -37,6 +52,7 @@ pub fn write_step<K: Kernel>(
     fused: &Fused,
     shells: &Shells,
     legend: &[LegendEntry],
+    solids: Vec<KeptSolid>,
     input: &Path,
 ) -> Result<(), Error> {
     let faces: Vec<FaceAttributes> = shells
@@ -58,7 +74,7 @@ pub fn write_step<K: Kernel>(
         p.temp.to_str().map(str::to_string).ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
     };
     let preview = files.preview.as_ref().map(utf8).transpose()?;
-    let request = Request::WriteStep { path: utf8(&files.step)?, handle: shells.handle, faces, preview };
+    let request = Request::WriteStep { path: utf8(&files.step)?, handle: shells.handle, faces, preview, solids };
     kernel.call::<Written>(&request).map_err(|error| Error::Sidecar { path: input.to_path_buf(), error })?;
     Ok(())
 }

@@ -8,6 +8,7 @@ use crate::model::tolerance::Tolerances;
 use crate::model::warning::Warning;
 use crate::pairing::estimate::{estimate_t_max, TMaxEstimate};
 use crate::pairing::features::{self, Feature, LimitArgs, Limits};
+use crate::pairing::wall_class::{classify, WallClass};
 use crate::pairing::{self, FaceRole, Pairing};
 
 /// What the user asked for; None means "estimate from the part".
@@ -20,6 +21,8 @@ pub struct PairingParams {
 
 #[derive(Debug, Clone, Serialize)]
 pub struct SolidPairing {
+    /// Thin-walled or not (chunky): a solid that is not thin-walled is not paired and gets no patch.
+    pub class: WallClass,
     /// Where t_max came from: "user" or the estimate's method.
     pub t_max_source: String,
     pub estimate: TMaxEstimate,
@@ -161,6 +164,10 @@ pub fn junction_loops(graph: &FaceGraph, roles: &[FaceRole]) -> Vec<EdgeId> {
 /// the same tested candidates.
 pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
     let draft_max = params.draft_max_deg.to_radians();
+    let class = classify(graph);
+    if !class.is_thin_walled() {
+        return not_paired(graph, params, class);
+    }
     let estimate = estimate_t_max(graph, draft_max);
     let (t_max, t_max_source) = match params.t_max {
         Some(t) => (t, "user (--t-max)".to_string()),
@@ -192,6 +199,7 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
         .sum();
     let junction = junction_loops(graph, &pairing.roles);
     SolidPairing {
+        class,
         t_max_source,
         estimate,
         tolerances,
@@ -201,6 +209,32 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
         paired_share: if graph.area > 0.0 { paired / graph.area } else { 0.0 },
         paired_skin_share: if skins > 0.0 { paired / skins } else { 0.0 },
         pairing,
+    }
+}
+
+/// A solid that is not thin-walled: no candidate is tested, every face is left out of pairing (role
+/// suppressed), and no patch is made of it.
+fn not_paired(graph: &FaceGraph, params: PairingParams, class: WallClass) -> SolidPairing {
+    let t_max = params.t_max.unwrap_or(class.thickness);
+    let tolerances = Tolerances::new(graph.bbox.diagonal(), t_max, params.draft_max_deg.to_radians());
+    let estimate = TMaxEstimate {
+        t_max,
+        dominant: None,
+        clusters: Vec::new(),
+        method: format!("not paired, {}", class.describe()),
+    };
+    let pairable = vec![false; graph.faces.len()];
+    SolidPairing {
+        class,
+        t_max_source: estimate.method.clone(),
+        estimate,
+        tolerances,
+        limits: params.limits.resolve(t_max),
+        features: Vec::new(),
+        junction: Vec::new(),
+        pairing: pairing::assemble(graph, &[], &pairable, &tolerances),
+        paired_share: 0.0,
+        paired_skin_share: 0.0,
     }
 }
 

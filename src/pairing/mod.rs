@@ -11,6 +11,7 @@ pub(crate) mod estimate;
 pub(crate) mod features;
 pub(crate) mod groups;
 pub(crate) mod overlap;
+pub(crate) mod wall_class;
 
 use serde::Serialize;
 

@@ -40,9 +40,16 @@ class FaceAttributes:
     thickness: float | None
 
 
-def write_step(path: str, shape: TopoDS_Shape, faces: list[FaceAttributes], preview: str | None = None) -> int:
+def write_step(
+    path: str,
+    shape: TopoDS_Shape,
+    faces: list[FaceAttributes],
+    preview: str | None = None,
+    solids: list[tuple[str, TopoDS_Shape]] | None = None,
+) -> int:
     """Writes `shape` with XCAF attributes to exactly `path` (and, with `preview`, a GLB of the same document
-    there); returns the STEP file size in bytes."""
+    there); `solids` (name, solid) follow as shapes of their own, so the faces of `shape` keep their indices.
+    Returns the STEP file size in bytes."""
     for target in [path] + ([preview] if preview else []):
         directory = os.path.dirname(os.path.abspath(target))
         if not os.path.isdir(directory):
@@ -54,6 +61,9 @@ def write_step(path: str, shape: TopoDS_Shape, faces: list[FaceAttributes], prev
     doc = TDocStd_Document(TCollection_ExtendedString("MDTV-XCAF"))
     XCAFApp_Application.GetApplication_s().InitDocument(doc)
     _attach_attributes(doc, shape, faces)
+    shape_tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+    for name, solid in solids or []:
+        TDataStd_Name.Set_s(shape_tool.AddShape(solid, False), TCollection_ExtendedString(name))
 
     writer = STEPCAFControl_Writer()
     writer.SetNameMode(True)
