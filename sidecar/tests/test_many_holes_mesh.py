@@ -1,4 +1,4 @@
-"""A face with many holes (a perforated sheet) is meshed by BRepMesh's Delabella algorithm (face_mesh.MANY_WIRES):
+"""A face with many holes (a perforated sheet) is meshed by BRepMesh's Delabella algorithm (constants.MANY_WIRES):
 its mesh must be what Watson's would be for the rest of the pipeline: complete, facing out, nodes on the face."""
 
 import math
@@ -11,8 +11,9 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS
 
-from midsurf_sidecar import face_graph
-from midsurf_sidecar.face_mesh import MANY_WIRES
+from midsurf_sidecar.constants import MANY_WIRES
+from midsurf_sidecar.describe import face_graph
+from midsurf_sidecar.geom.topology import indexed_map
 
 N, PITCH, D, T = 9, 6.0, 3.0, 1.5  # 81 holes: over MANY_WIRES
 
@@ -29,7 +30,7 @@ def perforated_sheet():
 
 def watson_area(solid, face_id: int) -> float:
     """The face meshed alone by BRepMesh's default algorithm, as every face was before: its triangles' area."""
-    face = TopoDS.Face(face_graph.indexed_map(solid, TopAbs_FACE).FindKey(face_id + 1))
+    face = TopoDS.Face(indexed_map(solid, TopAbs_FACE).FindKey(face_id + 1))
     BRepTools.Clean_s(face)
     BRepMesh_IncrementalMesh(face, 0.0375, False, 0.5, False)
     tri = BRep_Tool.Triangulation_s(face, TopLoc_Location())
