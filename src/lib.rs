@@ -9,6 +9,7 @@ pub mod face_graph;
 pub mod features;
 pub mod geom;
 pub mod inspect;
+pub mod isolation;
 pub mod joint;
 pub mod output;
 pub mod pairing;

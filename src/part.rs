@@ -18,6 +18,9 @@ pub struct Solid {
 pub struct Part {
     pub path: PathBuf,
     pub solids: Vec<Solid>,
+    /// Solids of the file the kernel could not describe, left out: (their number in the file, from 1; why).
+    /// The solids kept are numbered by their place in `solids`.
+    pub skipped: Vec<(usize, String)>,
 }
 
 /// Mesh settings for `describe`: whether to tessellate, and the chordal tolerance in mm (None: derived from
@@ -67,16 +70,32 @@ pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Par
     let text = absolute.to_str().ok_or_else(|| Error::input(path, "path is not valid UTF-8"))?;
     let loaded: Loaded = sidecar.call(&Request::LoadStep { path: text.to_string() }).map_err(|e| classify(path, e))?;
     let mut solids = Vec::with_capacity(loaded.solids.len());
-    for solid in loaded.solids {
+    let mut skipped = Vec::new();
+    for (number, solid) in loaded.solids.into_iter().enumerate() {
         let mesh_tolerance =
             mesh.tolerance.unwrap_or_else(|| crate::tolerance::mesh_tolerance(solid.volume, solid.area));
         let request = Request::Describe { handle: solid.handle, mesh: mesh.mesh, mesh_tolerance };
-        let graph: FaceGraph = sidecar.call(&request).map_err(|e| classify(path, e))?;
+        // One solid the kernel cannot describe (an op error: the sidecar lives on) is left out and the others go
+        // on; a dead or stuck sidecar takes every handle with it, so that stays an error.
+        let graph: FaceGraph = match sidecar.call(&request) {
+            Ok(graph) => graph,
+            Err(e) if e.code().is_some() => {
+                skipped.push((number + 1, crate::error::one_line(&e.to_string())));
+                continue;
+            }
+            Err(e) => return Err(classify(path, e)),
+        };
         let problems = graph.validate();
         if !problems.is_empty() {
-            return Err(Error::input(path, format!("inconsistent face graph: {}", problems.join("; "))));
+            skipped.push((number + 1, format!("inconsistent face graph: {}", problems.join("; "))));
+            continue;
         }
         solids.push(Solid { handle: solid.handle, graph, mesh_tolerance });
     }
-    Ok(Part { path: path.to_path_buf(), solids })
+    if solids.is_empty() {
+        // Nothing usable: the reasons of the solids left out are the error.
+        let why: Vec<String> = skipped.iter().map(|(n, why)| format!("solid {n}: {why}")).collect();
+        return Err(Error::input(path, format!("no solid could be described: {}", why.join("; "))));
+    }
+    Ok(Part { path: path.to_path_buf(), solids, skipped })
 }

@@ -54,10 +54,11 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let pairings: Vec<SolidPairing> = pair_part(&part, args.params);
     timings.pairing = t.elapsed().as_secs_f64();
 
-    let mut warnings = Vec::new();
+    let mut warnings = crate::isolation::skipped_solid_warnings(&part);
     let t = Instant::now();
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {
+        warnings.extend(crate::isolation::undescribed_face_warnings(i + 1, &solid.graph));
         warnings.extend(pairing_warnings(i + 1, &solid.graph, sp));
         let (fill, narrow, beside) = (sp.fill_edges(), sp.clip_narrow(), sp.blends_beside(&solid.graph));
         let (plans, notes) = plan_patches(&solid.graph, &sp.pairing, args.position, &fill);
@@ -384,7 +385,7 @@ fn patch_reports(made: &[Made], fused: &Fused, keep: &[bool]) -> Vec<PatchReport
 fn pairing_warnings(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> Vec<Warning> {
     let mut out = Vec::new();
     for (f, role) in sp.pairing.roles.iter().enumerate() {
-        if let Some(why) = role.unpaired_reason() {
+        if let Some(why) = role.unpaired_reason().filter(|_| graph.faces[f].problem.is_none()) {
             out.push(Warning {
                 code: "unpaired_face",
                 message: format!(
