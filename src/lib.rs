@@ -2,6 +2,7 @@
 //!
 //! Rust decides (pairing, classification, joints); the OCCT sidecar executes kernel operations.
 
+pub mod checks;
 pub mod cli;
 pub mod error;
 pub mod exit;

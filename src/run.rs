@@ -49,12 +49,14 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let t = Instant::now();
     let part = part::load(&mut sidecar, &args.input, MeshRequest { mesh: true, tolerance: None })?;
     timings.load = t.elapsed().as_secs_f64();
+    let option_warnings = crate::checks::against_part(&args.params, &part).map_err(|p| Error::input(&args.input, p))?;
 
     let t = Instant::now();
     let pairings: Vec<SolidPairing> = pair_part(&part, args.params);
     timings.pairing = t.elapsed().as_secs_f64();
 
-    let mut warnings = crate::isolation::skipped_solid_warnings(&part);
+    let mut warnings = option_warnings;
+    warnings.extend(crate::isolation::skipped_solid_warnings(&part));
     let t = Instant::now();
     let mut made: Vec<Made> = Vec::new();
     for (i, (solid, sp)) in part.solids.iter().zip(&pairings).enumerate() {

@@ -37,3 +37,62 @@ fn a_face_with_no_point_inside_is_left_out_with_a_warning() {
     assert!(report["result"]["area"].as_f64().unwrap() > 0.99 * 300.0 * 300.0, "{}", report["result"]);
     assert_eq!(names_in(&dir), ["mid.step", "r.json"]);
 }
+
+/// The failure contract for argument and environment problems: exit 2, one line, nothing on stdout.
+fn one_line_error(o: &common::Outcome) -> String {
+    assert_eq!(o.code, 2, "stderr: {}", o.stderr);
+    assert!(o.stdout.is_empty(), "{}", o.stdout);
+    let lines: Vec<&str> = o.stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "one line: {:?}", o.stderr);
+    assert!(lines[0].starts_with("midsurf: error: "), "{}", lines[0]);
+    lines[0].to_string()
+}
+
+#[test]
+fn a_bad_timeout_in_the_environment_is_one_line_not_a_panic() {
+    let dir = scratch("rel-timeout");
+    let out = dir.join("mid.step");
+    for bad in ["-1", "NaN", "inf", "1e30", "abc", "0"] {
+        let o = outcome(midsurf().env("MIDSURF_TIMEOUT_SECS", bad).args([
+            "run",
+            "fixtures/flat_plate.step",
+            "-o",
+            out.to_str().unwrap(),
+        ]));
+        let line = one_line_error(&o);
+        assert!(line.contains("MIDSURF_TIMEOUT_SECS"), "{bad}: {line}");
+    }
+    assert!(names_in(&dir).is_empty(), "nothing written");
+}
+
+#[test]
+fn argument_errors_are_one_line_and_help_still_works() {
+    for args in [&["run", "--bogus"][..], &["run", "fixtures/flat_plate.step"], &[], &["frobnicate"]] {
+        one_line_error(&outcome(midsurf().args(args)));
+    }
+    let line = one_line_error(&outcome(midsurf().args(["run", "x.step", "-o", "y.step", "--t-max", "-1"])));
+    assert!(line.contains("--t-max"), "{line}");
+    for args in [&["--help"][..], &["--version"], &["run", "--help"]] {
+        let o = outcome(midsurf().args(args));
+        assert_eq!(o.code, 0, "{args:?}: {}", o.stderr);
+        assert!(o.stdout.lines().count() >= 1, "{args:?}");
+    }
+}
+
+#[test]
+fn a_t_max_larger_than_the_part_is_refused_before_anything_is_written() {
+    let dir = scratch("rel-tmax");
+    let (out, rep) = (dir.join("mid.step"), dir.join("r.json"));
+    let o = outcome(midsurf().args([
+        "run",
+        "fixtures/flat_plate.step",
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+        "--t-max",
+        "1e9",
+    ]));
+    assert!(one_line_error(&o).contains("larger than the part"), "{}", o.stderr);
+    assert!(names_in(&dir).is_empty(), "nothing written");
+}

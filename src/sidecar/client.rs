@@ -14,8 +14,8 @@ use super::{SidecarError, Transport, TransportError};
 /// longer on a cold disk; kernel ops on the largest real parts take seconds, so minutes mean a hang.
 /// `MIDSURF_TIMEOUT_SECS` replaces every figure (tests use it to provoke timeouts quickly).
 pub fn timeout_for(op: &str) -> Duration {
-    if let Some(secs) = std::env::var("MIDSURF_TIMEOUT_SECS").ok().and_then(|s| s.parse::<f64>().ok()) {
-        return Duration::from_secs_f64(secs);
+    if let Some(after) = crate::checks::timeout_override() {
+        return after;
     }
     let secs = match op {
         "hello" => 120,
