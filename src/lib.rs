@@ -3,6 +3,7 @@
 //! Rust decides (pairing, classification, joints); the OCCT sidecar executes kernel operations.
 
 pub mod checks;
+pub mod cleanup;
 pub mod cli;
 pub mod error;
 pub mod exit;

@@ -6,6 +6,8 @@ use midsurf::cli::{self, Cli};
 use midsurf::exit::Exit;
 
 fn main() -> ExitCode {
+    // Before any thread: stop signals are then taken by one thread that cleans up (temporaries, sidecar).
+    midsurf::cleanup::install();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         // Help and version are answers, not errors: clap prints them and exits 0.

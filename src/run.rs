@@ -39,6 +39,10 @@ struct Made {
 pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let started = Instant::now();
     let mut timings = Timings::default();
+    let named = [("-o", Some(&args.output)), ("--report", args.report.as_ref()), ("--summary", args.summary.as_ref())];
+    let named = named.into_iter().chain([("--csv", args.csv.as_ref()), ("--preview", args.preview.as_ref())]);
+    let named: Vec<(&str, &Path)> = named.filter_map(|(n, p)| p.map(|p| (n, p.as_path()))).collect();
+    crate::output::distinct(&named)?;
     let step_out = Pending::new(&args.output, &args.input)?;
     let optional = |path: &Option<PathBuf>| path.as_deref().map(|p| Pending::new(p, &args.input)).transpose();
     let (report_out, summary_out) = (optional(&args.report)?, optional(&args.summary)?);
@@ -252,10 +256,8 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     if let Some(pending) = &csv_out {
         pending.write(report::patches_csv(&report.patches).as_bytes())?;
     }
-    step_out.commit()?;
-    for pending in [report_out, summary_out, csv_out, preview_out].into_iter().flatten() {
-        pending.commit()?;
-    }
+    let set = [Some(step_out), report_out, summary_out, csv_out, preview_out];
+    crate::output::commit_all(set.into_iter().flatten().collect())?;
     eprintln!("{}", summary_line(&args.output, &report));
     Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })
 }

@@ -31,9 +31,15 @@ impl ProcessTransport {
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::piped());
+        // Its own process group, so that a stop signal can take it and anything it starts; the sidecar sets
+        // its parent-death signal at start-up and checks it is still this process's child (a SIGKILL here).
+        #[cfg(unix)]
+        std::os::unix::process::CommandExt::process_group(&mut command, 0);
+        command.env("MIDSURF_PARENT_PID", std::process::id().to_string());
         let mut child = command.spawn().map_err(|e| SidecarError::Spawn {
             why: format!("{}: {e}; set MIDSURF_PYTHON or run scripts/setup", launch.python.display()),
         })?;
+        crate::cleanup::add_child(child.id());
         let stdin = child.stdin.take().expect("stdin was configured as piped");
         let stdout = child.stdout.take().expect("stdout was configured as piped");
         let stderr_pipe = child.stderr.take().expect("stderr was configured as piped");
@@ -107,11 +113,13 @@ impl Drop for ProcessTransport {
         self.stdin.take();
         for _ in 0..50 {
             if matches!(self.child.try_wait(), Ok(Some(_))) {
+                crate::cleanup::forget_child(self.child.id());
                 return;
             }
             thread::sleep(Duration::from_millis(10));
         }
         let _ = self.child.kill();
         let _ = self.child.wait();
+        crate::cleanup::forget_child(self.child.id());
     }
 }
