@@ -4,6 +4,7 @@
 use crate::face_graph::FaceGraph;
 use crate::part::Part;
 use crate::report::Warning;
+use crate::sidecar::protocol::EntityProblem;
 
 /// The solids of the file left out because the kernel could not describe them.
 pub fn skipped_solid_warnings(part: &Part) -> Vec<Warning> {
@@ -38,6 +39,40 @@ pub fn undescribed_face_warnings(solid: usize, graph: &FaceGraph) -> Vec<Warning
             })
         })
         .collect()
+}
+
+/// Entities the reader failed on: an error naming them if the shape uses one, else Ok.
+pub fn check_entities(problems: &[EntityProblem]) -> Result<(), String> {
+    let used: Vec<&EntityProblem> = problems.iter().filter(|p| p.used).collect();
+    match used.first() {
+        None => Ok(()),
+        Some(first) => Err(format!(
+            "corrupt STEP entity {} used by the shape: {}{}",
+            entity_name(first),
+            first.message,
+            if used.len() > 1 { format!(" (and {} more)", used.len() - 1) } else { String::new() }
+        )),
+    }
+}
+
+/// One warning for the entities the reader failed on that the shape does not use.
+pub fn entity_warning(part: &Part) -> Option<Warning> {
+    let problems = &part.entity_problems;
+    (!problems.is_empty()).then(|| Warning {
+        code: "step_syntax",
+        message: format!(
+            "the STEP reader failed on {} entit{} the shape does not use ({}); the shape is read whole",
+            problems.len(),
+            if problems.len() == 1 { "y" } else { "ies" },
+            problems.iter().map(|p| format!("{}: {}", entity_name(p), p.message)).collect::<Vec<_>>().join("; ")
+        ),
+        solid: None,
+        faces: Vec::new(),
+    })
+}
+
+fn entity_name(p: &EntityProblem) -> String {
+    p.entity.map_or_else(|| "(file header)".to_string(), |n| format!("#{n}"))
 }
 
 #[cfg(test)]

@@ -21,6 +21,8 @@ pub struct Part {
     /// Solids of the file the kernel could not describe, left out: (their number in the file, from 1; why).
     /// The solids kept are numbered by their place in `solids`.
     pub skipped: Vec<(usize, String)>,
+    /// Entities of the file the reader could not read, none of them used by the shape (else it is an error).
+    pub entity_problems: Vec<crate::sidecar::protocol::EntityProblem>,
 }
 
 /// Mesh settings for `describe`: whether to tessellate, and the chordal tolerance in mm (None: derived from
@@ -57,6 +59,18 @@ pub fn check_input(path: &Path) -> Result<(), Error> {
 const INPUT_CODES: [&str; 4] = ["not_found", "not_a_file", "read_failed", "no_solid"];
 
 fn classify(path: &Path, error: SidecarError) -> Error {
+    if let SidecarError::Died { op, stderr } = &error {
+        if op == "load_step" {
+            // The reader segfaulting (a corrupt entity it does not check) is the file's doing, not the install's.
+            return Error::input(
+                path,
+                format!(
+                    "the STEP reader crashed on this file; it is probably corrupt{}",
+                    crate::sidecar::last_words(stderr)
+                ),
+            );
+        }
+    }
     match error.code() {
         Some(code) if INPUT_CODES.contains(&code) => Error::input(path, error.to_string()),
         _ => Error::Sidecar { path: path.to_path_buf(), error },
@@ -69,6 +83,7 @@ pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Par
     let absolute = std::path::absolute(path).map_err(|e| Error::input(path, format!("bad path: {e}")))?;
     let text = absolute.to_str().ok_or_else(|| Error::input(path, "path is not valid UTF-8"))?;
     let loaded: Loaded = sidecar.call(&Request::LoadStep { path: text.to_string() }).map_err(|e| classify(path, e))?;
+    crate::isolation::check_entities(&loaded.entity_problems).map_err(|why| Error::input(path, why))?;
     let mut solids = Vec::with_capacity(loaded.solids.len());
     let mut skipped = Vec::new();
     for (number, solid) in loaded.solids.into_iter().enumerate() {
@@ -97,5 +112,5 @@ pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Par
         let why: Vec<String> = skipped.iter().map(|(n, why)| format!("solid {n}: {why}")).collect();
         return Err(Error::input(path, format!("no solid could be described: {}", why.join("; "))));
     }
-    Ok(Part { path: path.to_path_buf(), solids, skipped })
+    Ok(Part { path: path.to_path_buf(), solids, skipped, entity_problems: loaded.entity_problems })
 }

@@ -60,6 +60,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     timings.pairing = t.elapsed().as_secs_f64();
 
     let mut warnings = option_warnings;
+    warnings.extend(crate::isolation::entity_warning(&part));
     warnings.extend(crate::isolation::skipped_solid_warnings(&part));
     let t = Instant::now();
     let mut made: Vec<Made> = Vec::new();

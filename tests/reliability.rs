@@ -96,3 +96,52 @@ fn a_t_max_larger_than_the_part_is_refused_before_anything_is_written() {
     assert!(one_line_error(&o).contains("larger than the part"), "{}", o.stderr);
     assert!(names_in(&dir).is_empty(), "nothing written");
 }
+
+/// flat_plate.step with `edit` applied to its lines, written to `dir/name`.
+fn mutant(dir: &std::path::Path, name: &str, edit: impl Fn(&mut Vec<String>)) -> std::path::PathBuf {
+    let text = std::fs::read_to_string(common::root().join("fixtures/flat_plate.step")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    edit(&mut lines);
+    let path = dir.join(name);
+    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+    path
+}
+
+#[test]
+fn a_bad_entity_the_shape_does_not_use_is_a_warning_with_its_number() {
+    let dir = scratch("rel-syntax");
+    let input = mutant(&dir, "in.step", |lines| {
+        let end = lines.iter().rposition(|l| l.starts_with("ENDSEC")).unwrap();
+        lines.insert(end, "#9003 = CARTESIAN_POINT('',(1.,2.,3.),5.);".into());
+    });
+    let (out, rep) = (dir.join("mid.step"), dir.join("r.json"));
+    let o = outcome(midsurf().args([
+        "run",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]));
+    assert_eq!(o.code, 1, "{}", o.stderr);
+    let report = read_json(&rep);
+    let w: Vec<&serde_json::Value> =
+        report["warnings"].as_array().unwrap().iter().filter(|w| w["code"] == "step_syntax").collect();
+    assert_eq!(w.len(), 1, "{:?}", report["warnings"]);
+    assert!(w[0]["message"].as_str().unwrap().contains("#9003"), "{}", w[0]);
+}
+
+#[test]
+fn a_bad_entity_the_shape_uses_is_an_error_naming_it() {
+    let dir = scratch("rel-syntax-used");
+    // The first point of the plate gets a third parameter: the reader drops it, and the shape is not whole.
+    let input = mutant(&dir, "in.step", |lines| {
+        let k = lines.iter().position(|l| l.contains("CARTESIAN_POINT('',(0.,0.,0.))")).unwrap();
+        lines[k] = lines[k].replace("(0.,0.,0.))", "(0.,0.,0.),5.)");
+    });
+    let out = dir.join("mid.step");
+    let o = outcome(midsurf().args(["run", input.to_str().unwrap(), "-o", out.to_str().unwrap()]));
+    let line = one_line_error(&o);
+    assert!(line.contains("entity #") && line.contains("cartesian_point"), "{line}");
+    assert_eq!(names_in(&dir), ["in.step"]);
+}

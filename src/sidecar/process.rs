@@ -14,11 +14,26 @@ use super::{SidecarError, Transport, TransportError};
 /// Enough stderr to show a Python traceback's tail without holding a chatty kernel's whole log.
 const STDERR_TAIL_LINES: usize = 40;
 
+/// How `diagnostics` says the child was ended by a signal.
+pub const KILLED_BY: &str = "ended by signal ";
+
+fn signal_name(sig: i32) -> &'static str {
+    match sig {
+        6 => " (SIGABRT)",
+        9 => " (SIGKILL)",
+        11 => " (SIGSEGV)",
+        15 => " (SIGTERM)",
+        _ => "",
+    }
+}
+
 pub struct ProcessTransport {
     child: Child,
     stdin: Option<ChildStdin>,
     lines: Receiver<String>,
     stderr: Arc<Mutex<VecDeque<String>>>,
+    /// The signal that ended the child, once seen: a kill from outside, not a crash of its own making.
+    killed_by: Option<i32>,
 }
 
 impl ProcessTransport {
@@ -65,13 +80,18 @@ impl ProcessTransport {
                 tail.push_back(line);
             }
         });
-        Ok(ProcessTransport { child, stdin: Some(stdin), lines, stderr })
+        Ok(ProcessTransport { child, stdin: Some(stdin), lines, stderr, killed_by: None })
     }
 
     /// Waits briefly for the stderr reader so that a dying child's last words make it into the error.
     fn settle_stderr(&mut self) {
         for _ in 0..20 {
-            if matches!(self.child.try_wait(), Ok(Some(_))) {
+            if let Ok(Some(status)) = self.child.try_wait() {
+                #[cfg(unix)]
+                {
+                    self.killed_by = std::os::unix::process::ExitStatusExt::signal(&status);
+                }
+                let _ = status;
                 break;
             }
             thread::sleep(Duration::from_millis(10));
@@ -103,7 +123,12 @@ impl Transport for ProcessTransport {
 
     fn diagnostics(&self) -> String {
         let tail = self.stderr.lock().expect("stderr tail lock is never poisoned: no panics while held");
-        tail.iter().cloned().collect::<Vec<_>>().join("\n")
+        let mut lines: Vec<String> = tail.iter().cloned().collect();
+        // Last, so that the one-line message shows it: SIGSEGV is the kernel's crash, SIGKILL someone's kill.
+        if let Some(sig) = self.killed_by {
+            lines.push(format!("{KILLED_BY}{sig}{}", signal_name(sig)));
+        }
+        lines.join("\n")
     }
 }
 
