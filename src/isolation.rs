@@ -2,9 +2,35 @@
 //! solid never sinks a whole part. The warnings name the solid and face and carry the kernel's reason.
 
 use crate::face_graph::FaceGraph;
+use crate::pairs_report::{pair_solid, PairingParams, SolidPairing};
 use crate::part::Part;
 use crate::report::Warning;
 use crate::sidecar::protocol::EntityProblem;
+
+/// Pairs every solid of the part; a solid whose pairing panics (a bug, but one solid's) is moved to the
+/// part's skipped solids with the panic's message, and the others go on.
+pub fn pair_solids(part: &mut Part, params: PairingParams) -> Vec<SolidPairing> {
+    let solids = std::mem::take(&mut part.solids);
+    let mut pairings = Vec::with_capacity(solids.len());
+    for (i, solid) in solids.into_iter().enumerate() {
+        let graph = &solid.graph;
+        match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| pair_solid(graph, params))) {
+            Ok(pairing) => {
+                pairings.push(pairing);
+                part.solids.push(solid);
+            }
+            Err(panic) => {
+                let why = panic
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| panic.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "unknown".to_string());
+                part.skipped.push((i + 1, format!("internal error while pairing its faces: {why}")));
+            }
+        }
+    }
+    pairings
+}
 
 /// The solids of the file left out because the kernel could not describe them.
 pub fn skipped_solid_warnings(part: &Part) -> Vec<Warning> {
@@ -41,30 +67,25 @@ pub fn undescribed_face_warnings(solid: usize, graph: &FaceGraph) -> Vec<Warning
         .collect()
 }
 
-/// Entities the reader failed on: an error naming them if the shape uses one, else Ok.
-pub fn check_entities(problems: &[EntityProblem]) -> Result<(), String> {
-    let used: Vec<&EntityProblem> = problems.iter().filter(|p| p.used).collect();
-    match used.first() {
-        None => Ok(()),
-        Some(first) => Err(format!(
-            "corrupt STEP entity {} used by the shape: {}{}",
-            entity_name(first),
-            first.message,
-            if used.len() > 1 { format!(" (and {} more)", used.len() - 1) } else { String::new() }
-        )),
-    }
-}
-
 /// One warning for the entities the reader failed on that the shape does not use.
 pub fn entity_warning(part: &Part) -> Option<Warning> {
     let problems = &part.entity_problems;
     (!problems.is_empty()).then(|| Warning {
         code: "step_syntax",
         message: format!(
-            "the STEP reader failed on {} entit{} the shape does not use ({}); the shape is read whole",
+            "the STEP reader failed on {} entit{} ({}); the solids were read all the same",
             problems.len(),
             if problems.len() == 1 { "y" } else { "ies" },
-            problems.iter().map(|p| format!("{}: {}", entity_name(p), p.message)).collect::<Vec<_>>().join("; ")
+            problems
+                .iter()
+                .map(|p| format!(
+                    "{}{}: {}",
+                    entity_name(p),
+                    if p.used { ", referred to by others" } else { "" },
+                    p.message
+                ))
+                .collect::<Vec<_>>()
+                .join("; ")
         ),
         solid: None,
         faces: Vec::new(),

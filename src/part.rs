@@ -21,7 +21,8 @@ pub struct Part {
     /// Solids of the file the kernel could not describe, left out: (their number in the file, from 1; why).
     /// The solids kept are numbered by their place in `solids`.
     pub skipped: Vec<(usize, String)>,
-    /// Entities of the file the reader could not read, none of them used by the shape (else it is an error).
+    /// Entities of the file the reader could not read. The solids came out whole all the same (the kernel
+    /// checks them later); a file whose bad entities cost it its solids is an error naming them.
     pub entity_problems: Vec<crate::sidecar::protocol::EntityProblem>,
 }
 
@@ -83,7 +84,6 @@ pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Par
     let absolute = std::path::absolute(path).map_err(|e| Error::input(path, format!("bad path: {e}")))?;
     let text = absolute.to_str().ok_or_else(|| Error::input(path, "path is not valid UTF-8"))?;
     let loaded: Loaded = sidecar.call(&Request::LoadStep { path: text.to_string() }).map_err(|e| classify(path, e))?;
-    crate::isolation::check_entities(&loaded.entity_problems).map_err(|why| Error::input(path, why))?;
     let mut solids = Vec::with_capacity(loaded.solids.len());
     let mut skipped = Vec::new();
     for (number, solid) in loaded.solids.into_iter().enumerate() {

@@ -9,7 +9,7 @@ use crate::exit::Exit;
 use crate::face_graph::{FaceGraph, FaceId};
 use crate::geom::inside::SolidMesh;
 use crate::output::Pending;
-use crate::pairs_report::{pair_part, PairingParams, SolidPairing};
+use crate::pairs_report::{PairingParams, SolidPairing};
 use crate::part::{self, MeshRequest};
 use crate::patch::plan::{plan_patches, PatchPlan, PlanNote, Position};
 use crate::patch::trim::{connected_sets, find_branches, keep_mask};
@@ -51,12 +51,16 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let kernel = |e| Error::Sidecar { path: args.input.clone(), error: e };
 
     let t = Instant::now();
-    let part = part::load(&mut sidecar, &args.input, MeshRequest { mesh: true, tolerance: None })?;
+    let mut part = part::load(&mut sidecar, &args.input, MeshRequest { mesh: true, tolerance: None })?;
     timings.load = t.elapsed().as_secs_f64();
     let option_warnings = crate::checks::against_part(&args.params, &part).map_err(|p| Error::input(&args.input, p))?;
 
     let t = Instant::now();
-    let pairings: Vec<SolidPairing> = pair_part(&part, args.params);
+    let pairings: Vec<SolidPairing> = crate::isolation::pair_solids(&mut part, args.params);
+    if part.solids.is_empty() {
+        let why: Vec<String> = part.skipped.iter().map(|(n, why)| format!("solid {n}: {why}")).collect();
+        return Err(Error::input(&args.input, format!("no solid could be paired: {}", why.join("; "))));
+    }
     timings.pairing = t.elapsed().as_secs_f64();
 
     let mut warnings = option_warnings;

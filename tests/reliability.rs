@@ -132,16 +132,17 @@ fn a_bad_entity_the_shape_does_not_use_is_a_warning_with_its_number() {
 }
 
 #[test]
-fn a_bad_entity_the_shape_uses_is_an_error_naming_it() {
+fn a_bad_entity_that_costs_the_solid_is_an_error_naming_it() {
     let dir = scratch("rel-syntax-used");
-    // The first point of the plate gets a third parameter: the reader drops it, and the shape is not whole.
+    // The fifth point of the plate gets a third parameter: the reader drops it, and the solid falls apart.
     let input = mutant(&dir, "in.step", |lines| {
-        let k = lines.iter().position(|l| l.contains("CARTESIAN_POINT('',(0.,0.,0.))")).unwrap();
-        lines[k] = lines[k].replace("(0.,0.,0.))", "(0.,0.,0.),5.)");
+        let k = lines.iter().enumerate().filter(|(_, l)| l.contains("CARTESIAN_POINT")).nth(4).unwrap().0;
+        let end = lines[k].rfind("));").unwrap();
+        lines[k].replace_range(end.., "),5.);");
     });
     let out = dir.join("mid.step");
     let o = outcome(midsurf().args(["run", input.to_str().unwrap(), "-o", out.to_str().unwrap()]));
     let line = one_line_error(&o);
-    assert!(line.contains("entity #") && line.contains("cartesian_point"), "{line}");
+    assert!(line.contains("no solid; the reader failed on entity #") && line.contains("cartesian_point"), "{line}");
     assert_eq!(names_in(&dir), ["in.step"]);
 }

@@ -69,8 +69,8 @@ def load_step_checked(path: str) -> tuple[list[TopoDS_Shape], list[dict]]:
         )
     problems = entity_problems(reader, path)
     # A shape broken by a corrupt entity is reported with that entity, the cause.
-    used = [p for p in problems if p["used"]]
-    cause = f"; the reader failed on entity #{used[0]['entity']}: {used[0]['message']}" if used else ""
+    first = ([p for p in problems if p["used"]] + problems)[:1]
+    cause = f"; the reader failed on entity #{first[0]['entity']}: {first[0]['message']}" if first else ""
     reader.TransferRoots()
     shape = reader.OneShape()
     if reader.NbShapes() == 0 or shape.IsNull():
