@@ -114,3 +114,24 @@ pub fn load(sidecar: &mut Sidecar, path: &Path, mesh: MeshRequest) -> Result<Par
     }
     Ok(Part { path: path.to_path_buf(), solids, skipped, entity_problems: loaded.entity_problems })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_reader_crash_is_the_file_s_problem_said_without_colour_codes() {
+        let died = SidecarError::Died {
+            op: "load_step".into(),
+            stderr: "\u{1b}[31;1m**** ERR StepReaderData ****\u{1b}[0m\nended by signal 11 (SIGSEGV)".into(),
+        };
+        let e = classify(Path::new("p.step"), died).to_string();
+        assert_eq!(
+            e,
+            "p.step: the STEP reader crashed on this file; it is probably corrupt (sidecar stderr: ended by signal \
+             11 (SIGSEGV))"
+        );
+        let describe = SidecarError::Died { op: "describe".into(), stderr: String::new() };
+        assert!(!classify(Path::new("p.step"), describe).to_string().contains("reader crashed"));
+    }
+}
