@@ -111,9 +111,11 @@ def entity_problems(reader: STEPControl_Reader, path: str) -> list[dict]:
     # The model numbers entities in the order the DATA section defines them.
     ids = [int(m.group(1)) for m in _DEFINITION.finditer(body)]
     referenced = {int(m.group(1)) for m in _REFERENCE.finditer(_DEFINITION.sub(b"", body))}
-    # The model's own check (number 0) repeats what the entities' checks say, without saying which.
-    if any(number > 0 for number, _ in failed):
-        failed = [(number, fails) for number, fails in failed if number > 0]
+    # The model's own check (number 0) is the header's (a FILE_NAME field of the wrong type: no matter to the
+    # shape) or repeats what the entities' checks say, without saying which: left out.
+    failed = [(number, fails) for number, fails in failed if number > 0]
+    if not failed:
+        return []
     problems = []
     for number, fails in failed[:MAX_ENTITY_PROBLEMS]:
         entity = ids[number - 1] if 0 < number <= len(ids) else None
