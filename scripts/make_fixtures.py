@@ -370,6 +370,23 @@ def cover_pin() -> Fixture:
     return Fixture(Compound([single_solid(cover), pin]), volume, 15, solids=2)
 
 
+def plate_hairline_groove() -> Fixture:
+    """Plate 300 x 300 x 2 with a ring groove 1 deep and 2e-6 wide round the vertical axis (150, 150), inner
+    radius 50: the groove's floor is an annulus 2e-6 wide. Its UV centre is the ring's centre (outside it), a
+    coarse mesh's triangles cut across it, and the points tried beside its edges (down to 1e-7 of its 141 mm
+    box) all land outside: the kernel finds no point inside it, the class of a sliver face a real part can carry
+    (a cast housing's trimmed face). midsurf must leave that one face out with a warning and write the rest.
+    Faces: 10 (the plate's 6, its top in two: the island inside the groove and the rest; the groove's two walls
+    and floor).
+    Volume: the plate less the groove's annulus times its depth.
+    """
+    size, radius, width = 300.0, 50.0, 2e-6
+    c = size / 2
+    groove = cylinder_z(c, c, 1, radius + width, 1) - cylinder_z(c, c, 1, radius, 1)
+    part = box(0, 0, 0, size, size, 2) - groove
+    return Fixture(single_solid(part), size * size * 2 - math.pi * ((radius + width) ** 2 - radius**2), 10)
+
+
 PARTS: list[Callable[[], Fixture]] = [
     flat_plate,
     l_bracket,
@@ -391,6 +408,7 @@ PARTS: list[Callable[[], Fixture]] = [
     plate_step,
     pipe_tee,
     cover_pin,
+    plate_hairline_groove,
 ]
 
 

@@ -177,21 +177,26 @@ pub struct RunCli {
 #[derive(Debug, Clone, clap::Args)]
 pub struct PairingArgs {
     /// Largest wall thickness in mm [default: estimated per solid from its parallel walls, see the output].
-    #[arg(long, value_parser = positive_mm)]
+    #[arg(long, value_parser = positive_mm, allow_negative_numbers = true)]
     pub t_max: Option<f64>,
     /// Largest draft angle of a wall side in degrees; draft pairs differ by up to twice this.
-    #[arg(long, default_value_t = crate::model::tolerance::DEFAULT_DRAFT_MAX_DEG, value_parser = draft_degrees)]
+    #[arg(
+        long,
+        default_value_t = crate::model::tolerance::DEFAULT_DRAFT_MAX_DEG,
+        value_parser = draft_degrees,
+        allow_negative_numbers = true
+    )]
     pub draft_max: f64,
     /// Fillets and rounds up to this radius, and chamfers up to this width (mm), are suppressed: they do not
     /// pair, the joints bridge them [default: 2 x t_max].
-    #[arg(long, value_parser = non_negative_mm)]
+    #[arg(long, value_parser = non_negative_mm, allow_negative_numbers = true)]
     pub fillet_max: Option<f64>,
     /// Holes up to this diameter (mm) are filled in the mid-surface [default: t_max].
-    #[arg(long, value_parser = non_negative_mm)]
+    #[arg(long, value_parser = non_negative_mm, allow_negative_numbers = true)]
     pub hole_max: Option<f64>,
     /// Bosses, protrusions and tabs standing on a wall within a box of this diagonal (mm) are removed and
     /// their footprint filled [default: 4 x t_max].
-    #[arg(long, value_parser = non_negative_mm)]
+    #[arg(long, value_parser = non_negative_mm, allow_negative_numbers = true)]
     pub boss_max: Option<f64>,
     /// Keep every hole, whatever its diameter.
     #[arg(long)]
@@ -308,6 +313,7 @@ fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exi
     let mut sidecar = load::start_sidecar(&path)?;
     let part = load::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
     sidecar.shutdown();
+    crate::checks::against_part(&params, &part).map_err(|p| Error::input(&path, p))?;
     let solids: Vec<SolidPairing> = driver::pair_part(&part, params);
     let file = path.display().to_string();
     let text = if json {

@@ -25,6 +25,11 @@ impl Error {
     }
 }
 
+/// Text on one line: runs of whitespace (newlines of quoted tracebacks included) become one space.
+pub fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         // Messages may quote multi-line text (tracebacks): keep the promise of one line.

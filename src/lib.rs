@@ -11,8 +11,10 @@
 //! Rust decides (pairing, classification, joints); the OCCT sidecar executes kernel operations ([`kernel`]).
 //! [`geom`] holds the small geometric computations done in Rust.
 
-// Public: what main.rs (cli, exit) and the pairing benchmark (model, pairing, synthetic) use.
+// Public: what main.rs (cli, checks, exit, cleanup) and the pairing benchmark (model, pairing, synthetic) use.
 pub(crate) mod batch;
+pub mod checks;
+pub mod cleanup;
 pub mod cli;
 pub(crate) mod error;
 pub mod exit;

@@ -14,7 +14,9 @@ use crate::output::assemble::{self, Asked};
 use crate::output::files::Files;
 use crate::output::report::Timings;
 use crate::output::shells;
-use crate::pairing::driver::{pair_part, PairingParams};
+use crate::checks;
+use crate::pairing::driver::PairingParams;
+use crate::pairing::isolation;
 use crate::patch::make::make_patches;
 use crate::{stitch, trim};
 
@@ -40,16 +42,23 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
     let since = |t: Instant| t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let part = load::load(&mut kernel, &args.input, MeshRequest { mesh: true, tolerance: None })?;
+    let mut part = load::load(&mut kernel, &args.input, MeshRequest { mesh: true, tolerance: None })?;
     timings.load = since(t);
+    let mut warnings = checks::against_part(&args.params, &part).map_err(|p| Error::input(&args.input, p))?;
 
     let t = Instant::now();
-    let pairings = pair_part(&part, args.params);
+    let pairings = isolation::pair_solids(&mut part, args.params);
+    if part.solids.is_empty() {
+        let why: Vec<String> = part.skipped.iter().map(|(n, why)| format!("solid {n}: {why}")).collect();
+        return Err(Error::input(&args.input, format!("no solid could be paired: {}", why.join("; "))));
+    }
+    warnings.extend(isolation::entity_warning(&part));
+    warnings.extend(isolation::skipped_solid_warnings(&part));
     timings.pairing = since(t);
 
     let t = Instant::now();
     let patches = make_patches(&mut kernel, &part, &pairings, args.position).map_err(failed)?;
-    let mut warnings = patches.warnings;
+    warnings.extend(patches.warnings);
     timings.patches = since(t);
 
     let t = Instant::now();

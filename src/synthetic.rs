@@ -47,6 +47,7 @@ pub fn face(surface: Surface, n: usize, eval: impl Fn(f64, f64) -> (DVec3, DVec3
         bbox: Bbox { min, max },
         loops: Vec::new(),
         mesh: Some(mesh),
+        problem: None,
     }
 }
 

@@ -17,6 +17,9 @@ def protocol_stream() -> TextIO:
 
 
 def main() -> int:
+    from .lifeline import tie_to_parent
+
+    tie_to_parent()
     replies = protocol_stream()
     from .server import serve
 

@@ -50,11 +50,11 @@ def ping(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
 
 
 def load_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
-    solids = step_reader.load_step(require_str(args, "path"))
+    solids, problems = step_reader.load_step_checked(require_str(args, "path"))
     measured = [(s, indexed_map(s, TopAbs_FACE).Size(), volume(s), surface_props(s).Mass()) for s in solids]
     # Handles only once everything is measured, so a failure leaves no orphan handles behind.
     solids_json = [{"handle": store.put(s), "faces": n, "volume": v, "area": a} for s, n, v, a in measured]
-    return {"solids": solids_json}
+    return {"solids": solids_json, "entity_problems": problems}
 
 
 def describe(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:

@@ -4,8 +4,10 @@ OCP is imported by the `hello` op, not here, so that a Python without OCP can st
 """
 
 import json
+import os
 import platform
 import sys
+import time
 import traceback
 from typing import Any, BinaryIO, TextIO
 
@@ -59,7 +61,9 @@ class Session:
             raise OpError(f"{op!r} before hello: the first request must be hello", "no_handshake")
         if op not in self.ops:
             raise OpError(f"unknown op {op!r}; known: hello, shutdown, {', '.join(self.ops)}", "unknown_op")
-        return self.ops[op](self.store, args)
+        result = self.ops[op](self.store, args)
+        _test_stall(op)
+        return result
 
     def _hello(self, args: dict[str, Any]) -> dict[str, Any]:
         version = require_int(args, "protocol")
@@ -75,6 +79,23 @@ class Session:
             raise OpError(f"cannot import OCP ({one_line(exc)}); run scripts/setup", "ocp_missing") from exc
         self.ops = ops.OPS
         return {"protocol": PROTOCOL_VERSION, "python": platform.python_version(), "occt": ops.occt_version()}
+
+
+# Fault injection for tests only: MIDSURF_TEST_STALL="OP:MARKER" makes the sidecar, once OP has run (its
+# effects made, e.g. a STEP temporary written), write its pid to the file MARKER and hang instead of replying,
+# so that a test can kill it, or midsurf, in the middle of a long operation at a known point.
+TEST_STALL_VAR = "MIDSURF_TEST_STALL"
+TEST_STALL_SECONDS = 600
+
+
+def _test_stall(op: str) -> None:
+    spec = os.environ.get(TEST_STALL_VAR, "")
+    stall_op, _, marker = spec.partition(":")
+    if not spec or stall_op != op or not marker:
+        return
+    with open(marker, "w", encoding="utf-8") as f:
+        f.write(str(os.getpid()))
+    time.sleep(TEST_STALL_SECONDS)
 
 
 def _err(request_id: int | None, exc: OpError) -> dict[str, Any]:

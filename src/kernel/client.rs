@@ -14,8 +14,8 @@ use super::{SidecarError, Transport, TransportError};
 /// longer on a cold disk; kernel ops on the largest real parts take seconds, so minutes mean a hang.
 /// `MIDSURF_TIMEOUT_SECS` replaces every figure (tests use it to provoke timeouts quickly).
 pub fn timeout_for(op: &str) -> Duration {
-    if let Some(secs) = std::env::var("MIDSURF_TIMEOUT_SECS").ok().and_then(|s| s.parse::<f64>().ok()) {
-        return Duration::from_secs_f64(secs);
+    if let Some(after) = crate::checks::timeout_override() {
+        return after;
     }
     let secs = match op {
         "hello" => 120,
@@ -80,6 +80,14 @@ impl<T: Transport> Client<T> {
     }
 }
 
+/// Whether the sidecar's diagnostics end with its death by a signal sent from outside (not a crash).
+fn killed_from_outside(stderr: &str) -> bool {
+    let last = stderr.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("");
+    last.strip_prefix(super::process::KILLED_BY)
+        .and_then(|rest| rest.split_whitespace().next())
+        .is_some_and(|sig| ["9", "15", "1", "2"].contains(&sig))
+}
+
 /// The real sidecar process. A sidecar that died or hung is dropped (killed and reaped) and the next call
 /// starts a new one; handles of the old process are gone, so the caller must reload what it needs.
 pub struct Sidecar {
@@ -106,6 +114,8 @@ impl Sidecar {
     fn explain_start_failure(&self, error: SidecarError) -> SidecarError {
         let python = self.launch.python.display();
         match error {
+            // Killed from outside (SIGKILL, SIGTERM: the OOM killer, a user): the install is not at fault.
+            SidecarError::Died { ref stderr, .. } if killed_from_outside(stderr) => error,
             SidecarError::Died { stderr, .. } => SidecarError::Spawn {
                 why: format!(
                     "{python} exited before the handshake{}; run scripts/setup or set MIDSURF_PYTHON",
@@ -222,6 +232,15 @@ mod tests {
         let mut client = Client::connect(fake).unwrap();
         let err = client.call_value(&Request::Describe { handle: 1, mesh: false, mesh_tolerance: 0.1 }).unwrap_err();
         assert!(matches!(&err, SidecarError::Timeout { op, .. } if op == "describe"));
+    }
+
+    #[test]
+    fn a_sidecar_killed_before_the_handshake_is_not_blamed_on_the_install() {
+        assert!(killed_from_outside("Traceback...\nended by signal 9 (SIGKILL)"));
+        assert!(killed_from_outside("ended by signal 15 (SIGTERM)\n"));
+        // A crash of its own (a segfault importing a broken OCP) is the install's.
+        assert!(!killed_from_outside("ended by signal 11 (SIGSEGV)"));
+        assert!(!killed_from_outside("ModuleNotFoundError: No module named 'OCP'"));
     }
 
     #[test]

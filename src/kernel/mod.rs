@@ -88,14 +88,38 @@ impl SidecarError {
     }
 }
 
-/// The last line of the child's stderr that says something, for one-line error messages.
-fn last_words(stderr: &str) -> String {
-    stderr
+/// The last line of the child's stderr that says something, for one-line error messages, without the
+/// terminal colour codes OCCT puts in its messages.
+pub fn last_words(stderr: &str) -> String {
+    let plain = strip_ansi(stderr);
+    plain
         .lines()
         .rev()
         .find(|l| !l.trim().is_empty())
         .map(|l| format!(" (sidecar stderr: {})", l.trim()))
         .unwrap_or_default()
+}
+
+/// Text without ANSI escape sequences (ESC [ ... final byte) or other control characters but newlines.
+pub fn strip_ansi(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c == '\u{1b}' {
+            if chars.peek() == Some(&'[') {
+                chars.next();
+                // Parameters and intermediates, up to the final byte (@ to ~).
+                for d in chars.by_ref() {
+                    if ('@'..='~').contains(&d) {
+                        break;
+                    }
+                }
+            }
+        } else if c == '\n' || c == '\t' || !c.is_control() {
+            out.push(c);
+        }
+    }
+    out
 }
 
 impl fmt::Display for SidecarError {
@@ -133,4 +157,16 @@ pub trait Transport {
 pub enum TransportError {
     Closed,
     Timeout,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kernel_colour_codes_are_stripped_from_the_last_words() {
+        let stderr = "\u{1b}[31;1m**** ERR StepFile : Incorrect syntax ****\n\u{1b}[0m\n";
+        assert_eq!(last_words(stderr), " (sidecar stderr: **** ERR StepFile : Incorrect syntax ****)");
+        assert_eq!(strip_ansi("a\u{1b}[0mb\u{7}c"), "abc");
+    }
 }

@@ -240,6 +240,19 @@ pub struct LoadedSolid {
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct Loaded {
     pub solids: Vec<LoadedSolid>,
+    /// The reader's syntax and reference failures, per entity (none for a clean file).
+    #[serde(default)]
+    pub entity_problems: Vec<EntityProblem>,
+}
+
+/// An entity of the STEP file the reader could not read as written.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct EntityProblem {
+    /// Its number in the file (`#N`), when known.
+    pub entity: Option<u64>,
+    pub message: String,
+    /// Another entity refers to it, so what it stands for is missing from the shape.
+    pub used: bool,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]

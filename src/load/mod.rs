@@ -17,6 +17,12 @@ pub struct Solid {
 
 pub struct Part {
     pub solids: Vec<Solid>,
+    /// Solids of the file the kernel could not describe, left out: (their number in the file, from 1; why).
+    /// The solids kept are numbered by their place in `solids`.
+    pub skipped: Vec<(usize, String)>,
+    /// Entities of the file the reader could not read. The solids came out whole all the same (the kernel
+    /// checks them later); a file whose bad entities cost it its solids is an error naming them.
+    pub entity_problems: Vec<crate::kernel::protocol::EntityProblem>,
 }
 
 /// Mesh settings for `describe`: whether to tessellate, and the chordal tolerance in mm (None: derived from
@@ -53,6 +59,18 @@ pub fn check_input(path: &Path) -> Result<(), Error> {
 const INPUT_CODES: [&str; 4] = ["not_found", "not_a_file", "read_failed", "no_solid"];
 
 fn classify(path: &Path, error: SidecarError) -> Error {
+    if let SidecarError::Died { op, stderr } = &error {
+        if op == "load_step" {
+            // The reader segfaulting (a corrupt entity it does not check) is the file's doing, not the install's.
+            return Error::input(
+                path,
+                format!(
+                    "the STEP reader crashed on this file; it is probably corrupt{}",
+                    crate::kernel::last_words(stderr)
+                ),
+            );
+        }
+    }
     match error.code() {
         Some(code) if INPUT_CODES.contains(&code) => Error::input(path, error.to_string()),
         _ => Error::Sidecar { path: path.to_path_buf(), error },
@@ -67,16 +85,53 @@ pub fn load<K: Kernel>(kernel: &mut K, path: &Path, mesh: MeshRequest) -> Result
     let text = absolute.to_str().ok_or_else(|| Error::input(path, "path is not valid UTF-8"))?;
     let loaded: Loaded = kernel.call(&Request::LoadStep { path: text.to_string() }).map_err(|e| classify(path, e))?;
     let mut solids = Vec::with_capacity(loaded.solids.len());
-    for solid in loaded.solids {
+    let mut skipped = Vec::new();
+    for (number, solid) in loaded.solids.into_iter().enumerate() {
         let mesh_tolerance =
             mesh.tolerance.unwrap_or_else(|| crate::model::tolerance::mesh_tolerance(solid.volume, solid.area));
         let request = Request::Describe { handle: solid.handle, mesh: mesh.mesh, mesh_tolerance };
-        let graph: FaceGraph = kernel.call(&request).map_err(|e| classify(path, e))?;
+        // One solid the kernel cannot describe (an op error: the sidecar lives on) is left out and the others go
+        // on; a dead or stuck sidecar takes every handle with it, so that stays an error.
+        let graph: FaceGraph = match kernel.call(&request) {
+            Ok(graph) => graph,
+            Err(e) if e.code().is_some() => {
+                skipped.push((number + 1, crate::error::one_line(&e.to_string())));
+                continue;
+            }
+            Err(e) => return Err(classify(path, e)),
+        };
         let problems = graph.validate();
         if !problems.is_empty() {
-            return Err(Error::input(path, format!("inconsistent face graph: {}", problems.join("; "))));
+            skipped.push((number + 1, format!("inconsistent face graph: {}", problems.join("; "))));
+            continue;
         }
         solids.push(Solid { handle: solid.handle, graph, mesh_tolerance });
     }
-    Ok(Part { solids })
+    if solids.is_empty() {
+        // Nothing usable: the reasons of the solids left out are the error.
+        let why: Vec<String> = skipped.iter().map(|(n, why)| format!("solid {n}: {why}")).collect();
+        return Err(Error::input(path, format!("no solid could be described: {}", why.join("; "))));
+    }
+    Ok(Part { solids, skipped, entity_problems: loaded.entity_problems })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_reader_crash_is_the_file_s_problem_said_without_colour_codes() {
+        let died = SidecarError::Died {
+            op: "load_step".into(),
+            stderr: "\u{1b}[31;1m**** ERR StepReaderData ****\u{1b}[0m\nended by signal 11 (SIGSEGV)".into(),
+        };
+        let e = classify(Path::new("p.step"), died).to_string();
+        assert_eq!(
+            e,
+            "p.step: the STEP reader crashed on this file; it is probably corrupt (sidecar stderr: ended by signal \
+             11 (SIGSEGV))"
+        );
+        let describe = SidecarError::Died { op: "describe".into(), stderr: String::new() };
+        assert!(!classify(Path::new("p.step"), describe).to_string().contains("reader crashed"));
+    }
 }

@@ -111,6 +111,10 @@ pub struct Face {
     pub loops: Vec<Vec<EdgeId>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mesh: Option<Mesh>,
+    /// Why the kernel could not describe this face whole (no mesh, no point inside it, an edge without a
+    /// convexity): the face stays in the graph, so ids and edges hold, but is never paired.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub problem: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]

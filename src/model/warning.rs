@@ -10,7 +10,7 @@ use crate::model::face_graph::FaceId;
 pub struct Warning {
     /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict,
     /// thickness_step, partial_overlap, joint_failed, stitch_failed, open_edges, invalid_output,
-    /// feature_not_suppressed.
+    /// feature_not_suppressed, face_not_described, solid_failed, step_syntax, option_out_of_range.
     pub code: &'static str,
     pub message: String,
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::pending::Pending;
+use super::pending::{commit_all, distinct, Pending};
 use super::report::{patches_csv, Report};
 use crate::error::Error;
 
@@ -16,12 +16,17 @@ pub struct Files {
 }
 
 impl Files {
-    /// Checks every target before any work is done (their directories exist, none is the input).
+    /// Checks every target before any work is done (no two the same, their directories exist, none is the
+    /// input).
     pub fn open(
         input: &Path,
         step: &Path,
         [report, summary, csv, preview]: [&Option<PathBuf>; 4],
     ) -> Result<Files, Error> {
+        let named = [("-o", Some(step)), ("--report", report.as_deref()), ("--summary", summary.as_deref())];
+        let named = named.into_iter().chain([("--csv", csv.as_deref()), ("--preview", preview.as_deref())]);
+        let named: Vec<(&str, &Path)> = named.filter_map(|(n, p)| p.map(|p| (n, p))).collect();
+        distinct(&named)?;
         let step = Pending::new(step, input)?;
         let optional = |path: &Option<PathBuf>| path.as_deref().map(|p| Pending::new(p, input)).transpose();
         let (report, summary) = (optional(report)?, optional(summary)?);
@@ -41,10 +46,7 @@ impl Files {
         if let Some(pending) = &self.csv {
             pending.write(patches_csv(&report.patches, &report.solids).as_bytes())?;
         }
-        self.step.commit()?;
-        for pending in [self.report, self.summary, self.csv, self.preview].into_iter().flatten() {
-            pending.commit()?;
-        }
-        Ok(())
+        let set = [Some(self.step), self.report, self.summary, self.csv, self.preview];
+        commit_all(set.into_iter().flatten().collect())
     }
 }

@@ -78,6 +78,8 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
             continue;
         };
         let face = &graph.faces[f];
+        // A face the kernel could not describe never reached the pair tests: its reason is the kernel's.
+        let why = face.problem.as_ref().map_or(why, |p| format!("not described by the kernel: {p}"));
         writeln!(out, "  unpaired face {f} ({}, {:.2} mm2): {why}", face.surface.kind_name(), face.area).unwrap();
     }
     writeln!(

@@ -20,18 +20,20 @@ impl RTreeObject for FaceBox {
 /// Sorted pairs (a < b) of faces whose boxes, each inflated by t_max / 2, intersect: every two faces closer
 /// than t_max are among them.
 pub fn candidate_pairs(graph: &FaceGraph, t_max: f64) -> Vec<(FaceId, FaceId)> {
+    // A face the kernel could not describe whole has no trustworthy point, normal or mesh: it never pairs.
     let boxes: Vec<FaceBox> = graph
         .faces
         .iter()
+        .filter(|f| f.problem.is_none())
         .map(|f| {
             let b = f.bbox.inflated(t_max * 0.5);
             FaceBox { face: f.id, envelope: AABB::from_corners(b.min.to_array(), b.max.to_array()) }
         })
         .collect();
-    let envelopes: Vec<AABB<[f64; 3]>> = boxes.iter().map(|b| b.envelope).collect();
+    let envelopes: Vec<(FaceId, AABB<[f64; 3]>)> = boxes.iter().map(|b| (b.face, b.envelope)).collect();
     let tree = RTree::bulk_load(boxes);
     let mut out = Vec::new();
-    for (a, envelope) in envelopes.iter().enumerate() {
+    for &(a, ref envelope) in &envelopes {
         for hit in tree.locate_in_envelope_intersecting(envelope) {
             if hit.face > a {
                 out.push((a, hit.face));

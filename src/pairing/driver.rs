@@ -94,9 +94,10 @@ impl SolidPairing {
     /// What the pairing of solid `solid` (1-based) could not do: faces with no partner, groups whose faces pair
     /// with faces of their own side.
     pub fn warnings(&self, solid: usize, graph: &FaceGraph) -> Vec<Warning> {
-        let mut out = Vec::new();
+        // A face the kernel could not describe is said once, with the kernel's reason, not as unpaired.
+        let mut out = crate::pairing::isolation::undescribed_face_warnings(solid, graph);
         for (f, role) in self.pairing.roles.iter().enumerate() {
-            if let Some(why) = role.unpaired_reason() {
+            if let Some(why) = role.unpaired_reason().filter(|_| graph.faces[f].problem.is_none()) {
                 out.push(Warning {
                     code: "unpaired_face",
                     message: format!(

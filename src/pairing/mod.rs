@@ -10,6 +10,7 @@ pub(crate) mod driver;
 pub(crate) mod estimate;
 pub(crate) mod features;
 pub(crate) mod groups;
+pub(crate) mod isolation;
 pub(crate) mod overlap;
 pub(crate) mod wall_class;
 

@@ -157,15 +157,18 @@ pub fn plan_patches(
             notes.push(w);
         }
         let on_top = top[group.id] == side;
-        if group.kind == PairKind::Draft {
-            for (face, pairs) in &per_face {
-                plans.push(draft_plan(graph, group.id, *face, pairs, position, on_top).with_fill(graph, fill));
-            }
-            continue;
+        // A group is named by the kind of most overlap: a draft group may hold faces whose main pair is not two
+        // planes (a corrugated freeform band beside its flat ends). Only the planar ones go onto a bisector;
+        // the others are offset like any curved pair.
+        let (draft, offset): (Vec<_>, Vec<_>) = per_face
+            .iter()
+            .partition(|(face, pairs)| group.kind == PairKind::Draft && draft_planar(graph, *face, pairs));
+        for (face, pairs) in draft {
+            plans.push(draft_plan(graph, group.id, *face, pairs, position, on_top).with_fill(graph, fill));
         }
         // Cluster the reference faces' shares by their own mean thickness (a face once per patch).
         let mut clustered: Vec<PatchPlan> = Vec::new();
-        for share in per_face.iter().flat_map(|(face, pairs)| shares(graph, *face, pairs)) {
+        for share in offset.into_iter().flat_map(|(face, pairs)| shares(graph, *face, pairs)) {
             let t = combined(&share.pairs);
             let partners = partners_of(share.face, &share.pairs);
             let same = |p: &&mut PatchPlan| {
@@ -183,7 +186,7 @@ pub fn plan_patches(
                 }
                 None => clustered.push(PatchPlan {
                     group: group.id,
-                    kind: group.kind,
+                    kind: offset_kind(group.kind, &share.pairs),
                     faces: vec![share.face],
                     placement: Placement::Offset(position.offset(t.mean, on_top)),
                     thickness: t,
@@ -287,6 +290,25 @@ fn shares<'a>(graph: &FaceGraph, face: FaceId, pairs: &[&'a Pair]) -> Vec<Share<
             Share { face, pairs: mine, exclude: partners_of(face, &others), minor: k != main }
         })
         .collect()
+}
+
+/// Whether a draft group's face can go onto a bisector: it and the partner of its largest overlap are planes.
+fn draft_planar(graph: &FaceGraph, face: FaceId, pairs: &[&Pair]) -> bool {
+    let main = pairs.iter().max_by(|a, b| a.overlap_area.total_cmp(&b.overlap_area));
+    main.is_some_and(|p| graph.faces[face].surface.is_plane() && graph.faces[p.other(face)].surface.is_plane())
+}
+
+/// The kind an offset patch is reported as: its group's, unless the group is a draft group (whose offset
+/// faces are those that are not planar draft pairs): then the kind of the share's pair of largest overlap.
+fn offset_kind(group: PairKind, pairs: &[&Pair]) -> PairKind {
+    if group != PairKind::Draft {
+        return group;
+    }
+    let main = pairs.iter().max_by(|a, b| a.overlap_area.total_cmp(&b.overlap_area));
+    match main.map(|p| p.kind) {
+        Some(PairKind::Draft) | None => PairKind::Freeform,
+        Some(kind) => kind,
+    }
 }
 
 /// A draft face goes onto the exact bisector plane with its partner of largest overlap (or, on a skin, onto

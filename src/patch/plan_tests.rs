@@ -158,3 +158,28 @@ fn a_larger_face_mostly_beyond_its_partner_is_not_offset() {
     let (plans, _) = plan_patches(&g, &detect(&g, &tol, &[true; 2]), Position::Mid, &[]);
     assert_eq!(plans[0].faces, vec![0]);
 }
+
+#[test]
+fn a_freeform_face_in_a_draft_group_is_offset_not_projected() {
+    // A floor: a plane (x 0..100) and a flat B-spline strip beside it (x 100..110), both facing down; over
+    // them one roof plane tilted by 1.5 degree (x 0..109). The roof pairs with the plane as a draft pair
+    // (the group's kind: most overlap) and with the strip as a freeform pair: the strip has no plane to
+    // project onto the bisector of, so it is offset like any curved pair.
+    let a = 1.5_f64.to_radians();
+    let up = DVec3::new(-a.sin(), 0.0, a.cos());
+    let faces = vec![
+        synthetic::rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 100.0, -DVec3::Z),
+        synthetic::face(Surface::Bspline, 20, |u, v| (DVec3::new(100.0 + 10.0 * u, 40.0 * v, 0.0), -DVec3::Z)),
+        synthetic::rect(DVec3::Z * 2.0, DVec3::new(a.cos(), 0.0, a.sin()) * 109.0, DVec3::Y * 40.0, up),
+    ];
+    let g = synthetic::graph(faces, &[]);
+    let pairing = detect(&g, &Tolerances::new(120.0, 6.0, 2.0_f64.to_radians()), &[true; 3]);
+    assert_eq!(pairing.groups.len(), 1, "{:?}", pairing.pairs);
+    assert_eq!(pairing.groups[0].kind, PairKind::Draft);
+    let (plans, _) = plan_patches(&g, &pairing, Position::Mid, &[]);
+    let of = |f: FaceId| plans.iter().find(|p| p.faces.contains(&f)).expect("a patch per floor face");
+    assert!(matches!(of(0).placement, Placement::Plane { .. }), "{:?}", of(0).placement);
+    assert!(matches!(of(1).placement, Placement::Offset(_)), "{:?}", of(1).placement);
+    assert_eq!(of(1).kind, PairKind::Freeform);
+}
+

@@ -5,7 +5,7 @@ from typing import Any
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepTools import BRepTools_WireExplorer
+from OCP.BRepTools import BRepTools, BRepTools_WireExplorer
 from OCP.Bnd import Bnd_Box
 from OCP.GCPnts import GCPnts_AbscissaPoint
 from OCP.GeomAbs import (
@@ -73,10 +73,20 @@ def describe(solid: TopoDS_Shape, mesh_tolerance: float | None) -> dict[str, Any
         try:
             face_normals = OutwardNormals(face)
             face_box = _bbox(face)
-            with_mesh = mesh_tolerance is not None
-            faces.append(_describe_face(i, face, face_normals, face_box, edge_map, uses, with_mesh))
         except Exception as exc:
             raise KernelError(f"face {i}: {one_line(exc)}") from exc
+        with_mesh = mesh_tolerance is not None
+        try:
+            faces.append(_describe_face(i, face, face_normals, face_box, edge_map, uses, with_mesh))
+        except Exception as exc:
+            # One face the kernel cannot mesh or find a point in must not sink the part: it is described
+            # as far as it can be, with the reason, and Rust leaves it out of pairing (and says so).
+            try:
+                faces.append(
+                    _degraded_face(i, face, face_normals, face_box, edge_map, uses, with_mesh, one_line(exc))
+                )
+            except Exception:
+                raise KernelError(f"face {i}: {one_line(exc)}") from exc
         normals.append(face_normals)
         solid_box.Add(face_box)
 
@@ -86,7 +96,15 @@ def describe(solid: TopoDS_Shape, mesh_tolerance: float | None) -> dict[str, Any
         try:
             edges.append(_describe_edge(e, edge, vertex_map, uses, normals))
         except Exception as exc:
-            raise KernelError(f"edge {e} (faces {sorted(uses.faces[e])}): {one_line(exc)}") from exc
+            # An edge whose convexity cannot be sampled is kept (smooth, so nothing is built on it) and its
+            # faces carry the reason: they are left out of pairing like a face that cannot be described.
+            reason = f"edge {e}: {one_line(exc)}"
+            described = _degraded_edge(e, edge, vertex_map, uses)
+            if described is None:
+                raise KernelError(f"edge {e} (faces {sorted(uses.faces[e])}): {one_line(exc)}") from exc
+            edges.append(described)
+            for f in described["faces"]:
+                faces[f].setdefault("problem", reason)
 
     props = surface_props(solid)
     return {
@@ -121,11 +139,78 @@ def _describe_face(
         "area": props.Mass(),
         "centroid": list(xyz(props.CentreOfMass())),
         "bbox": bbox_json(box),
-        "loops": _loops(index, face, edge_map, uses),
     }
     if with_mesh:
         described["mesh"] = face_mesh(face, normals.reversed)
+    # Last: recording the edge uses is the one side effect, and must happen once even if this face fails.
+    described["loops"] = _loops(index, face, edge_map, uses)
     return described
+
+
+def _degraded_face(
+    index: int,
+    face: TopoDS_Face,
+    normals: OutwardNormals,
+    box: Bnd_Box,
+    edge_map: IndexedShapeMap,
+    uses: FaceEdgeUse,
+    with_mesh: bool,
+    problem: str,
+) -> dict[str, Any]:
+    """A face `_describe_face` failed on, as far as it can be described: its loops (so the graph stays whole),
+    area and box, a stand-in point (the UV centre, even outside the trim, else the box centre) and whatever
+    mesh exists (else none: no triangles)."""
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    sample = None
+    try:
+        sample = normals.at(0.5 * (u0 + u1), 0.5 * (v0 + v1))
+    except Exception:
+        sample = None
+    centre = list(0.5 * (a + b) for a, b in zip(xyz(box.CornerMin()), xyz(box.CornerMax())))
+    point, normal = (list(sample[0]), list(sample[1])) if sample is not None else (centre, [0.0, 0.0, 1.0])
+    try:
+        surface = describe_surface(normals.adaptor, normals.reversed, tuple(point), tuple(normal))
+    except Exception:
+        surface = {"kind": "other"}
+    props = surface_props(face)
+    described = {
+        "id": index,
+        "surface": surface,
+        "reversed": normals.reversed,
+        "point": point,
+        "normal": normal,
+        "area": props.Mass(),
+        "centroid": list(xyz(props.CentreOfMass())),
+        "bbox": bbox_json(box),
+        "loops": _loops(index, face, edge_map, uses),
+        "problem": problem,
+    }
+    if with_mesh:
+        try:
+            described["mesh"] = face_mesh(face, normals.reversed)
+        except Exception:
+            described["mesh"] = {"vertices": [], "normals": [], "triangles": []}
+    return described
+
+
+def _degraded_edge(
+    index: int, edge: TopoDS_Edge, vertex_map: IndexedShapeMap, uses: FaceEdgeUse
+) -> dict[str, Any] | None:
+    """An edge whose convexity could not be found, as smooth with angle 0; None without two vertices."""
+    first = vertex_map.FindIndex(TopExp.FirstVertex_s(edge)) - 1
+    last = vertex_map.FindIndex(TopExp.LastVertex_s(edge)) - 1
+    if first < 0 or last < 0:
+        return None
+    a, b = xyz(BRep_Tool.Pnt_s(TopExp.FirstVertex_s(edge))), xyz(BRep_Tool.Pnt_s(TopExp.LastVertex_s(edge)))
+    try:
+        curve = BRepAdaptor_Curve(edge)
+        length = GCPnts_AbscissaPoint.Length_s(curve)
+        kind = CURVE_KINDS.get(curve.GetType(), "other")
+        midpoint = list(_midpoint(curve, kind, length))
+    except Exception:
+        length, kind, midpoint = norm(sub(b, a)), "other", [0.5 * (p + q) for p, q in zip(a, b)]
+    return {"id": index, "vertices": [first, last], "faces": sorted(uses.faces[index]), "convexity": "smooth",
+            "angle": 0.0, "length": length, "curve": kind, "midpoint": midpoint}
 
 
 def _loops(index: int, face: TopoDS_Face, edge_map: IndexedShapeMap, uses: FaceEdgeUse) -> list[list[int]]:

@@ -1,0 +1,134 @@
+//! Fault injection: the sidecar killed in the middle of an operation, and midsurf itself stopped (SIGTERM)
+//! or killed (SIGKILL) mid-run. Each must end with a clear error, no sidecar left running and no file left.
+//! The sidecar is held at a known point by its test hook MIDSURF_TEST_STALL="OP:MARKER" (it runs OP, writes
+//! its pid to MARKER, and hangs).
+
+#![cfg(unix)]
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+use common::{root, scratch};
+
+/// `midsurf run fixtures/flat_plate.step` into `dir`, the sidecar stalling after `op`.
+fn start(dir: &Path, op: &str) -> (Child, PathBuf) {
+    let marker = dir.join("stalled.pid");
+    let mut cmd = Command::new(assert_cmd::cargo::cargo_bin("midsurf"));
+    cmd.current_dir(root()).env_clear();
+    for var in ["PATH", "HOME"] {
+        if let Some(v) = std::env::var_os(var) {
+            cmd.env(var, v);
+        }
+    }
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    cmd.env("MIDSURF_TEST_STALL", format!("{op}:{}", marker.display()))
+        .args(["run", "fixtures/flat_plate.step", "-o"])
+        .arg(out.join("mid.step"))
+        .arg("--report")
+        .arg(out.join("r.json"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    (cmd.spawn().unwrap(), marker)
+}
+
+/// The sidecar's pid once it stalls (it wrote the marker).
+fn stalled_sidecar(marker: &Path) -> i32 {
+    let started = Instant::now();
+    loop {
+        if let Some(pid) = std::fs::read_to_string(marker).ok().and_then(|s| s.trim().parse().ok()) {
+            return pid;
+        }
+        assert!(started.elapsed() < Duration::from_secs(120), "the sidecar never reached its stall point");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// A process that is gone (or a zombie waiting for its new parent to reap it), within a few seconds.
+fn gone(pid: i32) -> bool {
+    let started = Instant::now();
+    while started.elapsed() < Duration::from_secs(10) {
+        match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
+            Err(_) => return true,
+            // The state follows the command name in parentheses.
+            Ok(stat) if stat.rsplit(')').next().is_some_and(|rest| rest.trim_start().starts_with('Z')) => return true,
+            Ok(_) => std::thread::sleep(Duration::from_millis(50)),
+        }
+    }
+    false
+}
+
+fn kill(pid: i32, signal: i32) {
+    // SAFETY: kill(2) on a pid this test started (directly or as midsurf's child).
+    assert_eq!(unsafe { libc::kill(pid, signal) }, 0);
+}
+
+/// Exit code and stderr of a finished midsurf, failing the test if it does not finish.
+fn finish(mut child: Child) -> (Option<i32>, String) {
+    let started = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if started.elapsed() > Duration::from_secs(60) {
+            let _ = child.kill();
+            panic!("midsurf hung after the fault");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(child.stderr.as_mut().unwrap(), &mut stderr).unwrap();
+    (status.code(), stderr)
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect()
+}
+
+#[test]
+fn the_sidecar_killed_mid_operation_is_a_clear_error_and_nothing_is_written() {
+    let dir = scratch("fault-sidecar");
+    let (child, marker) = start(&dir, "describe");
+    let sidecar = stalled_sidecar(&marker);
+    kill(sidecar, libc::SIGKILL);
+    let (code, stderr) = finish(child);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("the OCCT sidecar died during 'describe'") && stderr.contains("SIGKILL"), "{stderr}");
+    assert!(gone(sidecar));
+    assert!(files_in(&dir.join("out")).is_empty(), "{:?}", files_in(&dir.join("out")));
+}
+
+#[test]
+fn midsurf_stopped_by_sigterm_kills_its_sidecar_and_removes_its_temporaries() {
+    let dir = scratch("fault-term");
+    // Stalled after writing the STEP: its temporary is on disk when the signal comes.
+    let (child, marker) = start(&dir, "write_step");
+    let sidecar = stalled_sidecar(&marker);
+    assert!(files_in(&dir.join("out")).iter().any(|f| f.ends_with(".tmp")), "the STEP temporary is written");
+    kill(child.id() as i32, libc::SIGTERM);
+    let (code, stderr) = finish(child);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert_eq!(
+        stderr.trim(),
+        "midsurf: error: stopped by SIGTERM: the sidecar was killed and no output was left half-written"
+    );
+    assert!(gone(sidecar), "the sidecar outlived midsurf");
+    assert!(files_in(&dir.join("out")).is_empty(), "{:?}", files_in(&dir.join("out")));
+}
+
+#[test]
+fn midsurf_killed_outright_takes_its_sidecar_with_it() {
+    let dir = scratch("fault-kill");
+    let (child, marker) = start(&dir, "describe");
+    let sidecar = stalled_sidecar(&marker);
+    kill(child.id() as i32, libc::SIGKILL);
+    let (code, _) = finish(child);
+    assert_eq!(code, None, "killed by a signal");
+    // SIGKILL cannot be caught: the sidecar goes by its parent-death signal.
+    assert!(gone(sidecar), "the sidecar outlived midsurf (orphaned)");
+    assert!(files_in(&dir.join("out")).is_empty(), "{:?}", files_in(&dir.join("out")));
+}
