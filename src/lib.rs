@@ -10,6 +10,7 @@ pub mod features;
 pub mod geom;
 pub mod inspect;
 pub mod joint;
+pub mod mesh;
 pub mod output;
 pub mod pairing;
 pub mod pairs_report;
