@@ -45,7 +45,9 @@ def _mesh(path: str, size: float, all_quads: bool) -> dict:
     opt("Mesh.MeshSizeFromCurvature", 0)
     opt("Mesh.MeshSizeFromPoints", 0)
     opt("Mesh.MeshSizeExtendFromBoundary", 1)
-    opt("Mesh.Algorithm", 8)  # Frontal-Delaunay for quads: right-angled triangles that recombine well
+    # Frontal-Delaunay, then recombined. Its quad variant (8) makes elements twice the size asked on cylinders
+    # (pipe_tee fixture at 4 mm: 89 elements on a 6828 mm2 half pipe, 5% of the area lost to the chords).
+    opt("Mesh.Algorithm", 6)
     opt("Mesh.RecombineAll", 1)
     opt("Mesh.RecombinationAlgorithm", 1)  # Blossom
     if all_quads:
