@@ -205,6 +205,9 @@ pub fn abaqus(deck: &Deck) -> String {
     for (i, p) in deck.mesh.nodes.iter().enumerate() {
         let _ = writeln!(out, "{}, {}, {}, {}", deck.node_id(i), real(p.x, 24), real(p.y, 24), real(p.z, 24));
     }
+    // One element set per property and element type, each with its shell section: a set named on two
+    // *ELEMENT blocks is legal Abaqus, but readers such as meshio keep only the last block's elements.
+    let mut sections = Vec::new();
     for (k, p) in deck.properties.iter().enumerate() {
         for (kind, nodes) in [("S4R", 4), ("S3", 3)] {
             let mine: Vec<usize> = (0..deck.mesh.elements.len())
@@ -213,19 +216,20 @@ pub fn abaqus(deck: &Deck) -> String {
             if mine.is_empty() {
                 continue;
             }
-            let _ = writeln!(out, "*ELEMENT, TYPE={kind}, ELSET={}", elset(p));
+            let set = format!("P{}_{kind}", p.id);
+            let _ = writeln!(out, "*ELEMENT, TYPE={kind}, ELSET={set}");
             for i in mine {
                 let n: Vec<String> = deck.mesh.elements[i].nodes.iter().map(|&k| deck.node_id(k).to_string()).collect();
                 let _ = writeln!(out, "{}, {}", deck.element_id(i), n.join(", "));
             }
+            sections.push((set, p));
         }
     }
-    for p in &deck.properties {
+    for (set, p) in sections {
         let _ = writeln!(out, "** {}", p.label);
         let _ = writeln!(
             out,
-            "*SHELL SECTION, ELSET={}, MATERIAL=MAT{}{}",
-            elset(p),
+            "*SHELL SECTION, ELSET={set}, MATERIAL=MAT{}{}",
             deck.material_id(),
             deck.placement.abaqus_offset()
         );
@@ -240,10 +244,6 @@ pub fn abaqus(deck: &Deck) -> String {
     );
     let _ = writeln!(out, "*DENSITY\n{}", real(m.density_t_mm3, 24));
     out
-}
-
-fn elset(p: &Property) -> String {
-    format!("P{}", p.id)
 }
 
 #[cfg(test)]
