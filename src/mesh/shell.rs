@@ -184,11 +184,16 @@ pub fn clean(mesh: &mut ShellMesh, tolerance: f64) -> Cleanup {
             if touched[a] || touched[b] {
                 continue;
             }
-            let (keep, gone) = if (mesh.dims[b], b) < (mesh.dims[a], a) { (b, a) } else { (a, b) };
-            if !collapsible(mesh, &adjacency[gone], keep, gone) {
+            // The more constrained end stays; when that would turn an element over, the other end stays
+            // (either way no node moves farther than the edge is long).
+            let preferred = if (mesh.dims[b], b) < (mesh.dims[a], a) { (b, a) } else { (a, b) };
+            let Some((keep, gone)) = [preferred, (preferred.1, preferred.0)]
+                .into_iter()
+                .find(|&(keep, gone)| collapsible(mesh, &adjacency[gone], keep, gone))
+            else {
                 refused.insert((a, b));
                 continue;
-            }
+            };
             for &i in &adjacency[gone] {
                 let e = &mut mesh.elements[i];
                 let had_keep = e.nodes.contains(&keep);
