@@ -68,6 +68,10 @@ pub struct MeshCli {
     /// Poisson's ratio [default: steel].
     #[arg(long, default_value_t = 0.3)]
     pub poisson: f64,
+    /// Refuse to mesh when the mid-surface's area over size² exceeds this many elements (a part measured in
+    /// metres meshed at 2 mm would run for hours and fill the disk).
+    #[arg(long, default_value_t = 2_000_000)]
+    pub max_elements: u64,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
@@ -133,6 +137,7 @@ struct RunThickness {
 
 #[derive(Debug, Deserialize)]
 struct RunResult {
+    area: f64,
     free_edges: Option<RunFreeEdges>,
 }
 
@@ -195,6 +200,20 @@ pub fn run(args: &MeshCli) -> Result<Exit, Error> {
             serde_json::from_str(&text).map_err(|e| Error::input(path, format!("not a criteria file: {e}")))?
         }
     };
+    let estimate = run.result.area / (args.size * args.size);
+    if estimate > args.max_elements as f64 {
+        return Err(Error::input(
+            &args.midsurface,
+            format!(
+                "{:.3e} mm2 at --size {} makes about {:.1e} elements, over --max-elements {}: give a larger --size (>= {:.3})",
+                run.result.area,
+                args.size,
+                estimate,
+                args.max_elements,
+                (run.result.area / args.max_elements as f64).sqrt()
+            ),
+        ));
+    }
     let material = Material { young_mpa: args.young, density_t_mm3: args.density, poisson: args.poisson };
 
     let faces = mesher::named_faces(&args.midsurface)?;
