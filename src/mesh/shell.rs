@@ -138,7 +138,8 @@ pub struct Cleanup {
     /// Elements that lost a node (quads become triangles) or vanished (triangles, slivers).
     pub quads_to_trias: usize,
     pub removed_elements: usize,
-    /// Short edges left because collapsing them would turn an element over or tear a quad across.
+    /// Edges still shorter than the tolerance at the end: every way of collapsing them would turn an element
+    /// over or tear a quad across.
     pub kept_short_edges: usize,
 }
 
@@ -187,13 +188,26 @@ pub fn clean(mesh: &mut ShellMesh, tolerance: f64) -> Cleanup {
             // The more constrained end stays; when that would turn an element over, the other end stays
             // (either way no node moves farther than the edge is long).
             let preferred = if (mesh.dims[b], b) < (mesh.dims[a], a) { (b, a) } else { (a, b) };
-            let Some((keep, gone)) = [preferred, (preferred.1, preferred.0)]
+            let at = |n: usize| mesh.nodes[n];
+            let mut choice = [preferred, (preferred.1, preferred.0)]
                 .into_iter()
-                .find(|&(keep, gone)| collapsible(mesh, &adjacency[gone], keep, gone))
-            else {
+                .map(|(keep, gone)| (keep, gone, at(keep)))
+                .find(|&(keep, gone, to)| collapsible(mesh, &adjacency[gone], keep, gone, to));
+            if choice.is_none() {
+                // Last, both ends meet half-way (each moves half the edge).
+                let (keep, gone) = preferred;
+                let half = (at(a) + at(b)) * 0.5;
+                let mut elements = adjacency[gone].clone();
+                elements.extend(&adjacency[keep]);
+                if collapsible(mesh, &elements, keep, gone, half) {
+                    choice = Some((keep, gone, half));
+                }
+            }
+            let Some((keep, gone, to)) = choice else {
                 refused.insert((a, b));
                 continue;
             };
+            mesh.nodes[keep] = to;
             for &i in &adjacency[gone] {
                 let e = &mut mesh.elements[i];
                 let had_keep = e.nodes.contains(&keep);
@@ -232,31 +246,46 @@ pub fn clean(mesh: &mut ShellMesh, tolerance: f64) -> Cleanup {
             break;
         }
     }
-    report.kept_short_edges = refused.len();
     let mut i = 0;
     mesh.elements.retain(|_| {
         i += 1;
         alive[i - 1]
     });
     drop_unused_nodes(mesh);
+    let mut left = std::collections::BTreeSet::new();
+    for e in &mesh.elements {
+        for k in 0..e.nodes.len() {
+            let (a, b) = (e.nodes[k], e.nodes[(k + 1) % e.nodes.len()]);
+            if (mesh.nodes[a] - mesh.nodes[b]).length() < tolerance {
+                left.insert((a.min(b), a.max(b)));
+            }
+        }
+    }
+    report.kept_short_edges = left.len();
     report
 }
 
-/// Whether moving `gone` onto `keep` leaves every element of `gone` the right way up (and no quad holding both
-/// across a diagonal).
-fn collapsible(mesh: &ShellMesh, elements: &[usize], keep: usize, gone: usize) -> bool {
+/// Whether moving `gone` onto `keep` and `keep` to `to` leaves every element of `elements` the right way up
+/// (and no quad holding both across a diagonal).
+fn collapsible(mesh: &ShellMesh, elements: &[usize], keep: usize, gone: usize, to: DVec3) -> bool {
+    let normal = |ids: &[usize], moved: bool| {
+        let p: Vec<DVec3> = ids.iter().map(|&n| if moved && n == keep { to } else { mesh.nodes[n] }).collect();
+        let local: Vec<usize> = (0..p.len()).collect();
+        element_normal(&p, &local)
+    };
     for &i in elements {
         let e = &mesh.elements[i].nodes;
-        let before = element_normal(&mesh.nodes, e);
+        let before = normal(e, false);
         let k = e.len();
         if let Some(pk) = e.iter().position(|&n| n == keep) {
-            let pg = e.iter().position(|&n| n == gone).expect("element of gone");
-            let adjacent = (pk + 1) % k == pg || (pg + 1) % k == pk;
-            if !adjacent {
-                return false;
-            }
-            if k == 3 {
-                continue; // vanishes
+            if let Some(pg) = e.iter().position(|&n| n == gone) {
+                let adjacent = (pk + 1) % k == pg || (pg + 1) % k == pk;
+                if !adjacent {
+                    return false;
+                }
+                if k == 3 {
+                    continue; // vanishes
+                }
             }
         }
         let mut after: Vec<usize> = e.iter().map(|&n| if n == gone { keep } else { n }).collect();
@@ -267,7 +296,7 @@ fn collapsible(mesh: &ShellMesh, elements: &[usize], keep: usize, gone: usize) -
         if after.len() < 3 {
             continue;
         }
-        let n = element_normal(&mesh.nodes, &after);
+        let n = normal(&after, true);
         // The element must keep its side and a real area: a tenth of its normal's length in its old direction.
         if n.dot(before) <= 0.1 * before.length() * n.length() || n.length() <= 1e-12 * before.length().max(1e-300) {
             return false;
