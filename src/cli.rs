@@ -64,6 +64,10 @@ pub enum Command {
         #[command(flatten)]
         pairing: PairingArgs,
     },
+    /// Mesh a mid-surface with shells (gmsh) and write solver decks: LS-DYNA .k (OpenRadioss reads it too),
+    /// Nastran .bdf, Abaqus .inp; every element carries its patch's thickness. Writes a quality report per
+    /// part (BASE.quality.json); exit code 1 when a quality criterion fails.
+    Mesh(crate::mesh::MeshCli),
     /// Make the mid-surfaces of many parts: every STEP file of a folder, or the parts of a manifest (CSV
     /// with a header, or JSON: column or key `input`, optional `name` and any of the `run` options per part,
     /// e.g. `input,t_max,keep_holes`). Per part, in the output folder: NAME.step and NAME.json as `midsurf run`
@@ -243,6 +247,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
     match cli.command {
         Command::Inspect { part, json, mesh } => inspect_command(part, json, mesh),
         Command::Pairs { part, json, pairing } => pairs_command(part, json, pairing.params()),
+        Command::Mesh(m) => crate::mesh::run(&m),
         Command::Run(r) => crate::run::run(&crate::run::RunArgs {
             input: r.part,
             output: r.output,

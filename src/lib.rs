@@ -8,6 +8,9 @@
 //! 5. [`stitch`]: joints grown between patches (T, L, steps, rims) and fused again;
 //! 6. [`output`]: shells, STEP attributes, the report and its topology summary, written atomically.
 //!
+//! Then, as commands of their own: [`mesh`] (`midsurf mesh`: the mid-surface meshed with shells by gmsh and
+//! written as solver decks) and [`batch`] (`midsurf batch`: many parts, each a `midsurf run`).
+//!
 //! Rust decides (pairing, classification, joints); the OCCT sidecar executes kernel operations ([`kernel`]).
 //! [`geom`] holds the small geometric computations done in Rust.
 
@@ -21,6 +24,7 @@ pub mod exit;
 pub(crate) mod geom;
 pub(crate) mod kernel;
 pub(crate) mod load;
+pub(crate) mod mesh;
 pub mod model;
 pub(crate) mod output;
 pub mod pairing;

@@ -1,0 +1,109 @@
+//! `midsurf mesh` from the outside: decks written, ids from --start-id, byte-identical reruns, the criteria
+//! gate on the exit code, one-line errors with nothing written. (The decks' contents are read back by
+//! independent readers in sidecar/tests/test_mesh_decks.py.)
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{midsurf, outcome, read_json, scratch};
+
+/// The t_rib fixture's mid-surface and report, made once per test in `dir`.
+fn t_rib(dir: &Path) -> (PathBuf, PathBuf) {
+    let (mid, rep) = (dir.join("mid.step"), dir.join("mid.json"));
+    let o = outcome(midsurf().args([
+        "run",
+        "fixtures/t_rib.step",
+        "-o",
+        mid.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+        "--no-timings",
+    ]));
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    (mid, rep)
+}
+
+fn mesh(mid: &Path, rep: &Path, base: &Path, extra: &[&str]) -> common::Outcome {
+    let mut cmd = midsurf();
+    cmd.args(["mesh", mid.to_str().unwrap(), "--report", rep.to_str().unwrap(), "-o", base.to_str().unwrap()])
+        .args(extra);
+    outcome(&mut cmd)
+}
+
+fn files(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> =
+        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn decks_are_byte_identical_on_a_rerun_and_ids_start_where_asked() {
+    let dir = scratch("mesh-rerun");
+    let (mid, rep) = t_rib(&dir);
+    let o = mesh(&mid, &rep, &dir.join("a"), &["--size", "5"]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let o = mesh(&mid, &rep, &dir.join("b"), &["--size", "5"]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    for ext in ["k", "bdf", "inp"] {
+        let a = std::fs::read(dir.join(format!("a.{ext}"))).unwrap();
+        let b = std::fs::read(dir.join(format!("b.{ext}"))).unwrap();
+        assert!(a == b, "{ext} differs between two runs");
+    }
+    let q = read_json(&dir.join("a.quality.json"));
+    let elements = q["total"]["elements"].as_u64().unwrap();
+    assert!(elements > 100, "{elements} elements on a 100 x 60 plate with a rib at 5 mm");
+    assert_eq!(q["total"]["t_edges"]["length"].as_f64().unwrap().round(), 60.0, "the rib's joint conforms");
+    assert_eq!(q["parts"].as_array().unwrap().len(), 1);
+
+    // A second part's deck starts at 1000001: its ids never meet the first one's.
+    let o = mesh(&mid, &rep, &dir.join("c"), &["--size", "5", "--start-id", "1000001", "--format", "k"]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    let k = std::fs::read_to_string(dir.join("c.k")).unwrap();
+    let first_node = k.lines().skip_while(|l| *l != "*NODE").nth(2).unwrap();
+    assert!(first_node.starts_with(" 1000001"), "{first_node}");
+    let q = read_json(&dir.join("c.quality.json"));
+    assert_eq!(q["ids"][0], 1000001);
+    assert!(q["ids"][1].as_u64().unwrap() >= 1000000 + elements);
+    assert!(files(&dir).iter().all(|f| !f.contains("tmp")), "no temporary left: {:?}", files(&dir));
+    assert!(!dir.join("c.bdf").exists(), "--format k writes the keyword deck only");
+}
+
+#[test]
+fn a_failed_criterion_exits_1_and_names_its_patches() {
+    let dir = scratch("mesh-criteria");
+    let (mid, rep) = t_rib(&dir);
+    let strict = dir.join("strict.json");
+    // No element edge reaches 10 mm at a 5 mm target: every patch fails.
+    std::fs::write(&strict, r#"{"min_edge": 10.0, "mass_ratio": [0.98, 1.02]}"#).unwrap();
+    let o = mesh(&mid, &rep, &dir.join("m"), &["--size", "5", "--criteria", strict.to_str().unwrap()]);
+    assert_eq!(o.code, 1, "{}", o.stderr);
+    let q = read_json(&dir.join("m.quality.json"));
+    assert_eq!(q["passed"], false);
+    let by_name = |n: &str| q["criteria"].as_array().unwrap().iter().find(|c| c["criterion"] == n).unwrap().clone();
+    assert_eq!(by_name("min_edge")["passed"], false);
+    assert_eq!(by_name("min_edge")["culprit_patches"], serde_json::json!([1, 2]));
+    // t_rib's shell volume is 7260 mm2 x 2 mm over 14400 mm3: 1.0083, inside 2%.
+    assert_eq!(by_name("mass_ratio")["passed"], true);
+    assert!((by_name("mass_ratio")["value"].as_f64().unwrap() - 1.00833).abs() < 1e-3);
+}
+
+#[test]
+fn a_report_that_is_not_midsurfs_stops_with_one_line_and_writes_nothing() {
+    let dir = scratch("mesh-bad-report");
+    let (mid, _) = t_rib(&dir);
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, "{\"patches\": 3}").unwrap();
+    let o = mesh(&mid, &bad, &dir.join("m"), &[]);
+    assert_eq!(o.code, 2);
+    assert_eq!(o.stderr.lines().count(), 1, "{}", o.stderr);
+    assert!(o.stderr.contains("bad.json") && o.stderr.contains("not a midsurf run report"), "{}", o.stderr);
+    assert_eq!(files(&dir), ["bad.json", "mid.json", "mid.step"]);
+    // An unknown criterion is refused the same way, not ignored.
+    let criteria = dir.join("c.json");
+    std::fs::write(&criteria, r#"{"min_edgee": 1}"#).unwrap();
+    let o = mesh(&mid, &dir.join("mid.json"), &dir.join("m"), &["--criteria", criteria.to_str().unwrap()]);
+    assert_eq!(o.code, 2);
+    assert!(o.stderr.contains("c.json") && o.stderr.contains("min_edgee"), "{}", o.stderr);
+}
