@@ -15,6 +15,8 @@ use crate::output::files::Files;
 use crate::output::report::Timings;
 use crate::output::shells;
 use crate::checks;
+use crate::kernel::client::killed_from_outside;
+use crate::kernel::SidecarError;
 use crate::pairing::driver::PairingParams;
 use crate::pairing::isolation;
 use crate::patch::make::make_patches;
@@ -34,7 +36,22 @@ pub struct RunArgs {
     pub keep_solids: bool,
 }
 
+/// `run_once`, and once more when the kernel crashed after the file was read (the sidecar ended by a signal
+/// it raised itself, such as SIGSEGV, not one sent from outside): OCCT's booleans crash now and then on input
+/// they handle on the next try, and a crash takes every kernel handle with it, so the part starts afresh.
 pub fn run(args: &RunArgs) -> Result<Exit, Error> {
+    match run_once(args) {
+        Err(Error::Sidecar { error: SidecarError::Died { op, stderr }, .. })
+            if op != "load_step" && !killed_from_outside(&stderr) =>
+        {
+            eprintln!("midsurf: the OCCT sidecar crashed during '{op}'; running {} once more", args.input.display());
+            run_once(args)
+        }
+        other => other,
+    }
+}
+
+fn run_once(args: &RunArgs) -> Result<Exit, Error> {
     let (started, mut timings) = (Instant::now(), Timings::default());
     let files = Files::open(&args.input, &args.output, [&args.report, &args.summary, &args.csv, &args.preview])?;
     let mut kernel = load::start_sidecar(&args.input)?;

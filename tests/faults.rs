@@ -132,3 +132,38 @@ fn midsurf_killed_outright_takes_its_sidecar_with_it() {
     assert!(gone(sidecar), "the sidecar outlived midsurf (orphaned)");
     assert!(files_in(&dir.join("out")).is_empty(), "{:?}", files_in(&dir.join("out")));
 }
+
+/// `midsurf run fixtures/t_rib.step` into `dir` with the sidecar crashing after `op` (test hook
+/// MIDSURF_TEST_CRASH: once when `once`, else every time): exit code, stderr, files written.
+fn run_crashing(dir: &Path, op: &str, once: bool) -> (Option<i32>, String, Vec<String>) {
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let marker = if once { dir.join("crashed.pid").display().to_string() } else { String::new() };
+    let output = Command::new(assert_cmd::cargo::cargo_bin("midsurf"))
+        .current_dir(root())
+        .env_clear()
+        .env("PATH", std::env::var_os("PATH").unwrap_or_default())
+        .env("MIDSURF_TEST_CRASH", format!("{op}:{marker}"))
+        .args(["run", "fixtures/t_rib.step", "-o"])
+        .arg(out.join("mid.step"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    (output.status.code(), stderr, files_in(&out))
+}
+
+#[test]
+fn a_kernel_crash_after_loading_is_tried_once_more_and_a_second_one_is_the_error() {
+    let dir = scratch("fault-crash-once");
+    let (code, stderr, files) = run_crashing(&dir, "fuse", true);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(stderr.contains("crashed during 'fuse'; running") && stderr.contains("once more"), "{stderr}");
+    assert_eq!(files, vec!["mid.step".to_string()]);
+
+    let dir = scratch("fault-crash-always");
+    let (code, stderr, files) = run_crashing(&dir, "fuse", false);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.lines().last().unwrap().starts_with("midsurf: error:"), "{stderr}");
+    assert!(stderr.contains("died during 'fuse'") && stderr.contains("SIGABRT"), "{stderr}");
+    assert!(files.is_empty(), "{files:?}");
+}

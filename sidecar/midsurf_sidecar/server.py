@@ -63,6 +63,7 @@ class Session:
             raise OpError(f"unknown op {op!r}; known: hello, shutdown, {', '.join(self.ops)}", "unknown_op")
         result = self.ops[op](self.store, args)
         _test_stall(op)
+        _test_crash(op)
         return result
 
     def _hello(self, args: dict[str, Any]) -> dict[str, Any]:
@@ -96,6 +97,25 @@ def _test_stall(op: str) -> None:
     with open(marker, "w", encoding="utf-8") as f:
         f.write(str(os.getpid()))
     time.sleep(TEST_STALL_SECONDS)
+
+
+# Fault injection for tests only: MIDSURF_TEST_CRASH="OP:MARKER" makes the sidecar abort (SIGABRT, a crash of
+# its own, as a kernel segfault is) once OP has run, the first time only: it first creates the file MARKER, and
+# a sidecar that finds MARKER there goes on. With no MARKER it crashes every time.
+TEST_CRASH_VAR = "MIDSURF_TEST_CRASH"
+
+
+def _test_crash(op: str) -> None:
+    spec = os.environ.get(TEST_CRASH_VAR, "")
+    crash_op, _, marker = spec.partition(":")
+    if not spec or crash_op != op:
+        return
+    if marker:
+        if os.path.exists(marker):
+            return
+        with open(marker, "w", encoding="utf-8") as f:
+            f.write(str(os.getpid()))
+    os.abort()
 
 
 def _err(request_id: int | None, exc: OpError) -> dict[str, Any]:

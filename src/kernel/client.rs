@@ -81,7 +81,7 @@ impl<T: Transport> Client<T> {
 }
 
 /// Whether the sidecar's diagnostics end with its death by a signal sent from outside (not a crash).
-fn killed_from_outside(stderr: &str) -> bool {
+pub(crate) fn killed_from_outside(stderr: &str) -> bool {
     let last = stderr.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("");
     last.strip_prefix(super::process::KILLED_BY)
         .and_then(|rest| rest.split_whitespace().next())
