@@ -262,6 +262,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
         }),
         Command::Batch(b) => crate::batch::run(&crate::batch::BatchArgs {
             defaults: b.defaults(),
+            check_run_args: check_run_args,
             source: b.inputs,
             output: b.output,
             jobs: b.jobs as usize,
@@ -271,6 +272,17 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             plan: b.plan,
         }),
     }
+}
+
+/// A part's `midsurf run` arguments (after `run PART -o OUT`) checked by the parser `run` itself uses: the
+/// first line of its complaint.
+fn check_run_args(args: Vec<String>) -> Result<(), String> {
+    let mut argv = vec!["midsurf".to_string(), "run".into(), "part.step".into(), "-o".into(), "out.step".into()];
+    argv.extend(args);
+    Cli::try_parse_from(argv).map(|_| ()).map_err(|e| {
+        let text = e.to_string();
+        text.lines().next().unwrap_or("").trim_start_matches("error: ").to_string()
+    })
 }
 
 #[derive(Serialize)]
@@ -349,5 +361,17 @@ impl From<PositionArg> for Position {
             PositionArg::Top => Position::Top,
             PositionArg::Bottom => Position::Bottom,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_batch_part_s_run_arguments_are_checked_by_run_s_own_parser() {
+        assert_eq!(check_run_args(vec!["--t-max=2.5".into(), "--keep-holes".into()]), Ok(()));
+        assert!(check_run_args(vec!["--t-max=-1".into()]).unwrap_err().contains("not a positive length"));
+        assert!(check_run_args(vec!["--position=sideways".into()]).unwrap_err().contains("sideways"));
     }
 }

@@ -4,9 +4,12 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use crate::checks;
 use crate::error::Error;
 use crate::exit::Exit;
 use crate::geom::inside::SolidMesh;
+use crate::kernel::client::killed_from_outside;
+use crate::kernel::SidecarError;
 use crate::load::{self, MeshRequest};
 use crate::model::params::Position;
 use crate::model::tolerance;
@@ -14,9 +17,6 @@ use crate::output::assemble::{self, Asked};
 use crate::output::files::Files;
 use crate::output::report::Timings;
 use crate::output::shells;
-use crate::checks;
-use crate::kernel::client::killed_from_outside;
-use crate::kernel::SidecarError;
 use crate::pairing::driver::PairingParams;
 use crate::pairing::isolation;
 use crate::patch::make::make_patches;

@@ -4,9 +4,6 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
-use clap::Parser;
-
-use crate::cli::Cli;
 use crate::error::Error;
 
 /// The `midsurf run` options a manifest may set per part, by flag name (a column or key may also spell them
@@ -76,7 +73,11 @@ impl Shard {
 
 /// The parts of a folder (its `*.step`/`*.stp` files, not recursing) or of a manifest (`.csv` or `.json`),
 /// sorted by name, each with the batch's options overridden by its own.
-pub fn parts(source: &Path, defaults: &Options) -> Result<Vec<Part>, Error> {
+/// Checks the `midsurf run` arguments of a part (after `run PART -o OUT`), with the message `run` would give;
+/// the CLI hands in its own parser, so the batch never depends on the CLI.
+pub type RunArgsCheck = fn(Vec<String>) -> Result<(), String>;
+
+pub fn parts(source: &Path, defaults: &Options, check: RunArgsCheck) -> Result<Vec<Part>, Error> {
     let mut parts = if source.is_dir() {
         folder(source, defaults)?
     } else {
@@ -93,7 +94,9 @@ pub fn parts(source: &Path, defaults: &Options) -> Result<Vec<Part>, Error> {
         let mut parts = Vec::new();
         for row in rows {
             let line = row.0.clone();
-            parts.push(manifest_part(&base, defaults, row).map_err(|e| Error::input(source, format!("{line}: {e}")))?);
+            parts.push(
+                manifest_part(&base, defaults, row, check).map_err(|e| Error::input(source, format!("{line}: {e}")))?,
+            );
         }
         parts
     };
@@ -154,7 +157,7 @@ fn check_name(name: &str) -> Result<(), String> {
 /// A manifest row: where it came from ("line 3", "part 2") and its fields as text, by column or key.
 type Row = (String, Vec<(String, String)>);
 
-fn manifest_part(base: &Path, defaults: &Options, (_, fields): Row) -> Result<Part, String> {
+fn manifest_part(base: &Path, defaults: &Options, (_, fields): Row, check: RunArgsCheck) -> Result<Part, String> {
     let mut input = None;
     let mut name = None;
     let mut options = defaults.clone();
@@ -181,7 +184,7 @@ fn manifest_part(base: &Path, defaults: &Options, (_, fields): Row) -> Result<Pa
     let name = name.filter(|s| !s.is_empty()).unwrap_or_else(|| stem(&path));
     check_name(&name)?;
     let part = Part { name, input: path, options };
-    validate(&part)?;
+    validate(&part, check)?;
     Ok(part)
 }
 
@@ -195,14 +198,8 @@ fn boolean(value: &str) -> Result<String, String> {
 
 /// Checks a part's options with `midsurf run`'s own parser, so a bad value fails the batch before any part
 /// runs, with the message `midsurf run` would give.
-fn validate(part: &Part) -> Result<(), String> {
-    let mut argv = vec!["midsurf".to_string(), "run".into(), "part.step".into(), "-o".into(), "out.step".into()];
-    argv.extend(part.run_args());
-    Cli::try_parse_from(argv).map(|_| ()).map_err(|e| {
-        let text = e.to_string();
-        let first = text.lines().next().unwrap_or("").trim_start_matches("error: ").to_string();
-        format!("part '{}': {first}", part.name)
-    })
+fn validate(part: &Part, check: RunArgsCheck) -> Result<(), String> {
+    check(part.run_args()).map_err(|first| format!("part '{}': {first}", part.name))
 }
 
 /// CSV rows (a header first; fields may be double-quoted, with "" for a quote inside), blank lines skipped.
@@ -323,30 +320,44 @@ mod tests {
     fn csv_quotes_and_options() {
         let rows = csv_rows("input,t_max,keep_holes\n\"a, b.step\",2.5,yes\n\nc.step,,\n").unwrap();
         let parts: Vec<Part> =
-            rows.into_iter().map(|r| manifest_part(Path::new("m"), &Options::new(), r).unwrap()).collect();
+            rows.into_iter().map(|r| manifest_part(Path::new("m"), &Options::new(), r, accept).unwrap()).collect();
         assert_eq!(parts[0].input, PathBuf::from("m/a, b.step"));
         assert_eq!(parts[0].name, "a, b");
         assert_eq!(parts[0].run_args(), ["--t-max=2.5", "--keep-holes"]);
         assert!(parts[1].run_args().is_empty());
     }
 
+    /// Accepts every argument (the CLI's own check is tested beside it).
+    fn accept(_: Vec<String>) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// Refuses a negative t_max, as `run`'s parser does.
+    fn no_negative_t_max(args: Vec<String>) -> Result<(), String> {
+        match args.iter().find(|a| a.starts_with("--t-max=-")) {
+            Some(a) => Err(format!("invalid value '{a}': not a positive length")),
+            None => Ok(()),
+        }
+    }
+
     #[test]
     fn manifest_errors_name_the_row_and_the_problem() {
         let bad = |text: &str| {
             let rows = csv_rows(text).unwrap();
-            rows.into_iter().map(|r| manifest_part(Path::new(""), &Options::new(), r)).collect::<Result<Vec<_>, _>>()
+            let part = |r| manifest_part(Path::new(""), &Options::new(), r, no_negative_t_max);
+            rows.into_iter().map(part).collect::<Result<Vec<_>, _>>()
         };
-        assert!(bad("input,t_max\na.step,-1\n").unwrap_err().contains("not a positive length"));
+        let negative = bad("input,t_max\na.step,-1\n").unwrap_err();
+        assert!(negative.contains("part 'a'") && negative.contains("not a positive length"), "{negative}");
         assert!(bad("input,colour\na.step,red\n").unwrap_err().contains("unknown column"));
         assert!(bad("name\nx\n").unwrap_err().contains("no input"));
-        assert!(bad("input,position\na.step,sideways\n").unwrap_err().contains("sideways"));
     }
 
     #[test]
     fn json_manifest_forms() {
         let rows = json_rows(r#"{"parts": ["a.step", {"input": "b.stp", "name": "bee", "hole_max": 3}]}"#).unwrap();
         let parts: Vec<Part> =
-            rows.into_iter().map(|r| manifest_part(Path::new(""), &Options::new(), r).unwrap()).collect();
+            rows.into_iter().map(|r| manifest_part(Path::new(""), &Options::new(), r, accept).unwrap()).collect();
         assert_eq!(parts[0].name, "a");
         assert_eq!((parts[1].name.as_str(), parts[1].run_args()), ("bee", vec!["--hole-max=3".to_string()]));
         assert!(json_rows("[[1]]").is_err());

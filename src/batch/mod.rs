@@ -32,6 +32,8 @@ pub struct BatchArgs {
     pub shard: Option<Shard>,
     /// The options of every part, unless its manifest row sets its own.
     pub defaults: Options,
+    /// `midsurf run`'s own check of a part's arguments (from the CLI).
+    pub check_run_args: inputs::RunArgsCheck,
     /// Run every part, even those whose outputs are up to date.
     pub force: bool,
     /// Print the parts (after --shard) as JSON, with the arguments each would run with; run nothing.
@@ -65,7 +67,7 @@ const STATE_DIR: &str = ".midsurf-batch";
 
 pub fn run(args: &BatchArgs) -> Result<Exit, Error> {
     let started = Instant::now();
-    let parts = inputs::parts(&args.source, &args.defaults)?;
+    let parts = inputs::parts(&args.source, &args.defaults, args.check_run_args)?;
     let parts = match args.shard {
         Some(shard) => shard.select(parts),
         None => parts,

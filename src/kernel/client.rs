@@ -14,7 +14,7 @@ use super::{SidecarError, Transport, TransportError};
 /// longer on a cold disk; kernel ops on the largest real parts take seconds, so minutes mean a hang.
 /// `MIDSURF_TIMEOUT_SECS` replaces every figure (tests use it to provoke timeouts quickly).
 pub fn timeout_for(op: &str) -> Duration {
-    if let Some(after) = crate::checks::timeout_override() {
+    if let Some(after) = super::timeout::timeout_override() {
         return after;
     }
     let secs = match op {

@@ -7,6 +7,7 @@ pub mod fake;
 pub mod process;
 pub mod protocol;
 pub mod python;
+pub mod timeout;
 
 use std::fmt;
 use std::time::Duration;

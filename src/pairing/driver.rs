@@ -95,7 +95,7 @@ impl SolidPairing {
     /// with faces of their own side.
     pub fn warnings(&self, solid: usize, graph: &FaceGraph) -> Vec<Warning> {
         // A face the kernel could not describe is said once, with the kernel's reason, not as unpaired.
-        let mut out = crate::pairing::isolation::undescribed_face_warnings(solid, graph);
+        let mut out = undescribed_face_warnings(solid, graph);
         for (f, role) in self.pairing.roles.iter().enumerate() {
             if let Some(why) = role.unpaired_reason().filter(|_| graph.faces[f].problem.is_none()) {
                 out.push(Warning {
@@ -251,6 +251,28 @@ fn is_small_round(surface: &Surface, t_max: f64) -> bool {
         Surface::Torus { minor_radius, .. } => minor_radius <= t_max,
         _ => false,
     }
+}
+
+/// The faces of one solid the kernel could not describe whole: never paired, bridged by the joints if they
+/// lie between walls.
+pub fn undescribed_face_warnings(solid: usize, graph: &FaceGraph) -> Vec<Warning> {
+    graph
+        .faces
+        .iter()
+        .filter_map(|f| {
+            f.problem.as_ref().map(|why| Warning {
+                code: "face_not_described",
+                message: format!(
+                    "face {} ({}, {:.3} mm2) is left out of pairing: {why}",
+                    f.id,
+                    f.surface.kind_name(),
+                    f.area
+                ),
+                solid: Some(solid),
+                faces: vec![f.id],
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]

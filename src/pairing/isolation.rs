@@ -3,7 +3,6 @@
 
 use crate::kernel::protocol::EntityProblem;
 use crate::load::Part;
-use crate::model::face_graph::FaceGraph;
 use crate::model::warning::Warning;
 use crate::pairing::driver::{pair_solid, PairingParams, SolidPairing};
 
@@ -45,28 +44,6 @@ pub fn skipped_solid_warnings(part: &Part) -> Vec<Warning> {
         .collect()
 }
 
-/// The faces of one solid the kernel could not describe whole: never paired, bridged by the joints if they
-/// lie between walls.
-pub fn undescribed_face_warnings(solid: usize, graph: &FaceGraph) -> Vec<Warning> {
-    graph
-        .faces
-        .iter()
-        .filter_map(|f| {
-            f.problem.as_ref().map(|why| Warning {
-                code: "face_not_described",
-                message: format!(
-                    "face {} ({}, {:.3} mm2) is left out of pairing: {why}",
-                    f.id,
-                    f.surface.kind_name(),
-                    f.area
-                ),
-                solid: Some(solid),
-                faces: vec![f.id],
-            })
-        })
-        .collect()
-}
-
 /// One warning for the entities the reader failed on that the shape does not use.
 pub fn entity_warning(part: &Part) -> Option<Warning> {
     let problems = &part.entity_problems;
@@ -99,7 +76,9 @@ fn entity_name(p: &EntityProblem) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::face_graph::FaceGraph;
     use crate::model::face_graph::Surface;
+    use crate::pairing::driver::undescribed_face_warnings;
     use crate::synthetic;
     use glam::DVec3;
 

@@ -182,4 +182,3 @@ fn a_freeform_face_in_a_draft_group_is_offset_not_projected() {
     assert!(matches!(of(1).placement, Placement::Offset(_)), "{:?}", of(1).placement);
     assert_eq!(of(1).kind, PairKind::Freeform);
 }
-
