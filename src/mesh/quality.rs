@@ -120,9 +120,10 @@ pub struct Criteria {
 
 impl Criteria {
     /// Without a criteria file: the smallest edge at least 0.2 x the target size (a solver's time step falls
-    /// with it; 0.2 is the share the users accept before they fix a mesh by hand).
+    /// with it; 0.2 is the share users accept before they fix a mesh by hand), and no element turned inside
+    /// out (a Jacobian below 0: a solver stops on it).
     pub fn default_gate() -> Criteria {
-        Criteria { min_edge_share_of_size: Some(0.2), ..Default::default() }
+        Criteria { min_edge_share_of_size: Some(0.2), min_jacobian: Some(0.0), ..Default::default() }
     }
 }
 
