@@ -207,20 +207,8 @@ fn one_part(part: &Part, out: &Path, exe: &Path, code: &str, args: &BatchArgs) -
         input: part.input.display().to_string(),
         exit: 2,
         status: "ran".into(),
-        warnings: None,
-        patches: None,
-        faces: None,
-        shells: None,
-        components: None,
-        valid: None,
-        nonmanifold_edges: None,
-        open_edges: None,
-        open_length: None,
-        rim_edges: None,
-        paired_share: None,
-        time_s: 0.0,
-        error: None,
         key: key.clone(),
+        ..Row::default()
     };
     let log = match std::fs::File::create(&paths.log) {
         Ok(f) => f,

@@ -10,7 +10,7 @@ use crate::output::pending::Pending;
 
 /// One part's outcome. The figures come from its report (`result`, `topology`, `solids`), absent when the
 /// run failed.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Row {
     pub part: String,
     pub input: String,
@@ -191,20 +191,9 @@ mod tests {
             input: "x".into(),
             exit: 1,
             status: "ran".into(),
-            warnings: None,
-            patches: None,
-            faces: None,
-            shells: None,
-            components: None,
-            valid: None,
-            nonmanifold_edges: None,
-            open_edges: None,
-            open_length: None,
-            rim_edges: None,
-            paired_share: None,
             time_s: 1.234,
-            error: None,
             key: "k".into(),
+            ..Row::default()
         };
         row.fill_from_report(&report);
         assert_eq!((row.warnings, row.patches, row.faces, row.components), (Some(2), Some(3), Some(7), Some(2)));
