@@ -129,22 +129,36 @@ def _describe_face(
 ) -> dict[str, Any]:
     diagonal = norm(sub(xyz(box.CornerMax()), xyz(box.CornerMin())))
     point, normal = interior_point(normals, diagonal)
-    props = surface_props(face)
-    described = {
-        "id": index,
-        "surface": describe_surface(normals.adaptor, normals.reversed, point, normal),
-        "reversed": normals.reversed,
-        "point": list(point),
-        "normal": list(normal),
-        "area": props.Mass(),
-        "centroid": list(xyz(props.CentreOfMass())),
-        "bbox": bbox_json(box),
-    }
+    surface = describe_surface(normals.adaptor, normals.reversed, point, normal)
+    described = _face_record(index, face, normals, box, surface, list(point), list(normal))
     if with_mesh:
         described["mesh"] = face_mesh(face, normals.reversed)
     # Last: recording the edge uses is the one side effect, and must happen once even if this face fails.
     described["loops"] = _loops(index, face, edge_map, uses)
     return described
+
+
+def _face_record(
+    index: int,
+    face: TopoDS_Face,
+    normals: OutwardNormals,
+    box: Bnd_Box,
+    surface: dict[str, Any],
+    point: list[float],
+    normal: list[float],
+) -> dict[str, Any]:
+    """What every described face carries, whole or degraded."""
+    props = surface_props(face)
+    return {
+        "id": index,
+        "surface": surface,
+        "reversed": normals.reversed,
+        "point": point,
+        "normal": normal,
+        "area": props.Mass(),
+        "centroid": list(xyz(props.CentreOfMass())),
+        "bbox": bbox_json(box),
+    }
 
 
 def _degraded_face(
@@ -172,19 +186,9 @@ def _degraded_face(
         surface = describe_surface(normals.adaptor, normals.reversed, tuple(point), tuple(normal))
     except Exception:
         surface = {"kind": "other"}
-    props = surface_props(face)
-    described = {
-        "id": index,
-        "surface": surface,
-        "reversed": normals.reversed,
-        "point": point,
-        "normal": normal,
-        "area": props.Mass(),
-        "centroid": list(xyz(props.CentreOfMass())),
-        "bbox": bbox_json(box),
-        "loops": _loops(index, face, edge_map, uses),
-        "problem": problem,
-    }
+    described = _face_record(index, face, normals, box, surface, point, normal)
+    described["loops"] = _loops(index, face, edge_map, uses)
+    described["problem"] = problem
     if with_mesh:
         try:
             described["mesh"] = face_mesh(face, normals.reversed)
