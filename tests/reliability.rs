@@ -3,7 +3,9 @@
 
 mod common;
 
-use common::{midsurf, outcome, read_json, scratch};
+use std::path::{Path, PathBuf};
+
+use common::{midsurf, outcome, read_json, scratch, Outcome};
 
 fn names_in(dir: &std::path::Path) -> Vec<String> {
     let mut names: Vec<String> =
@@ -12,19 +14,19 @@ fn names_in(dir: &std::path::Path) -> Vec<String> {
     names
 }
 
+/// `midsurf run INPUT -o DIR/mid.step --report DIR/r.json EXTRA...`: its outcome and the report's path.
+fn run_into(dir: &Path, input: &Path, extra: &[&str]) -> (Outcome, PathBuf) {
+    let rep = dir.join("r.json");
+    let mut cmd = midsurf();
+    cmd.arg("run").arg(input).arg("-o").arg(dir.join("mid.step")).arg("--report").arg(&rep).args(extra);
+    (outcome(&mut cmd), rep)
+}
+
 #[test]
 fn a_face_with_no_point_inside_is_left_out_with_a_warning() {
     // The groove's floor is a ring 2e-6 wide: the kernel finds no point inside it (it made the run fail).
     let dir = scratch("rel-hairline");
-    let (out, rep) = (dir.join("mid.step"), dir.join("r.json"));
-    let o = outcome(midsurf().args([
-        "run",
-        "fixtures/plate_hairline_groove.step",
-        "-o",
-        out.to_str().unwrap(),
-        "--report",
-        rep.to_str().unwrap(),
-    ]));
+    let (o, rep) = run_into(&dir, Path::new("fixtures/plate_hairline_groove.step"), &[]);
     assert_eq!(o.code, 1, "{}", o.stderr);
     let report = read_json(&rep);
     let left_out: Vec<&serde_json::Value> =
@@ -82,17 +84,7 @@ fn argument_errors_are_one_line_and_help_still_works() {
 #[test]
 fn a_t_max_larger_than_the_part_is_refused_before_anything_is_written() {
     let dir = scratch("rel-tmax");
-    let (out, rep) = (dir.join("mid.step"), dir.join("r.json"));
-    let o = outcome(midsurf().args([
-        "run",
-        "fixtures/flat_plate.step",
-        "-o",
-        out.to_str().unwrap(),
-        "--report",
-        rep.to_str().unwrap(),
-        "--t-max",
-        "1e9",
-    ]));
+    let (o, _) = run_into(&dir, Path::new("fixtures/flat_plate.step"), &["--t-max", "1e9"]);
     assert!(one_line_error(&o).contains("larger than the part"), "{}", o.stderr);
     assert!(names_in(&dir).is_empty(), "nothing written");
 }
@@ -114,15 +106,7 @@ fn a_bad_entity_the_shape_does_not_use_is_a_warning_with_its_number() {
         let end = lines.iter().rposition(|l| l.starts_with("ENDSEC")).unwrap();
         lines.insert(end, "#9003 = CARTESIAN_POINT('',(1.,2.,3.),5.);".into());
     });
-    let (out, rep) = (dir.join("mid.step"), dir.join("r.json"));
-    let o = outcome(midsurf().args([
-        "run",
-        input.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--report",
-        rep.to_str().unwrap(),
-    ]));
+    let (o, rep) = run_into(&dir, &input, &[]);
     assert_eq!(o.code, 1, "{}", o.stderr);
     let report = read_json(&rep);
     let w: Vec<&serde_json::Value> =
