@@ -50,14 +50,15 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
             sampled_pair(fa, fb, PairKind::Toroidal, Some(t), tol)?
         }
         (
-            Surface::Cone { origin: oa, axis: aa, convex: xa, .. },
-            Surface::Cone { origin: ob, axis: ab, convex: xb, .. },
+            Surface::Cone { origin: oa, axis: aa, half_angle: ha, apex: pa, convex: xa, .. },
+            Surface::Cone { origin: ob, axis: ab, half_angle: hb, apex: pb, convex: xb, .. },
         ) => {
             coaxial(*oa, *aa, *ob, *ab, tol)?;
             if xa == xb {
                 return Err(Rejection::SameSense);
             }
-            sampled_pair(fa, fb, PairKind::Conical, None, tol)?
+            let exact = parallel_cones((*aa, *ha, *pa), (*ab, *hb, *pb), tol)?;
+            sampled_pair(fa, fb, PairKind::Conical, exact, tol)?
         }
         (sa, sb) if sa.is_freeform() || sb.is_freeform() => sampled_pair(fa, fb, PairKind::Freeform, None, tol)?,
         (sa, sb) => return Err(Rejection::Incompatible { kinds: [sa.kind_name(), sb.kind_name()] }),
@@ -286,6 +287,31 @@ fn radial_gap((ra, convex_a): (f64, bool), (rb, convex_b): (f64, bool), tol: &To
         return Err(Rejection::Distance { distance: t, limit: tol.t_max });
     }
     Ok(t)
+}
+
+/// The thickness of two coaxial cones opening the same way at the same half-angle (a drafted boss's or a
+/// moulded corner's two skins): their rulings are parallel lines in every plane through the axis, so the wall is
+/// as thick everywhere as the distance between those lines, the apexes' offset along the axis times the sine of
+/// the half-angle. Exact where rays on a faceted mesh scatter by a few percent, so the mid-patch meets its drafted
+/// planar neighbours, offset exactly, edge to edge. None for other cones (measured by rays).
+fn parallel_cones(
+    (axis_a, half_a, apex_a): (DVec3, f64, DVec3),
+    (axis_b, half_b, apex_b): (DVec3, f64, DVec3),
+    tol: &Tolerances,
+) -> Result<Option<f64>, Rejection> {
+    // OCCT's semi-angle is signed: the radius grows along the axis when it is positive.
+    let (open_a, open_b) = (axis_a * half_a.signum(), axis_b * half_b.signum());
+    if angle_between(open_a, open_b) > tol.parallel_angle || (half_a.abs() - half_b.abs()).abs() > tol.parallel_angle {
+        return Ok(None);
+    }
+    let t = (apex_a - apex_b).dot(open_a).abs() * half_a.abs().sin();
+    if t <= tol.point {
+        return Err(Rejection::NotFacing);
+    }
+    if t > tol.t_max {
+        return Err(Rejection::Distance { distance: t, limit: tol.t_max });
+    }
+    Ok(Some(t))
 }
 
 /// Pairs measured by rays: from the smaller face along its inward normal onto the other.
