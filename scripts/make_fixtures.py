@@ -23,7 +23,9 @@ from dataclasses import dataclass
 from io import BytesIO
 from pathlib import Path
 
-from build123d import Axis, Compound, Edge, Face, Plane, Shape, Solid, Vector, Wire, export_step
+from build123d import (
+    Axis, Compound, Edge, Face, Location, Plane, RectangleRounded, Shape, Solid, Vector, Wire, export_step, extrude,
+)
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.GProp import GProp_GProps
@@ -387,6 +389,88 @@ def plate_hairline_groove() -> Fixture:
     return Fixture(single_solid(part), size * size * 2 - math.pi * ((radius + width) ** 2 - radius**2), 10)
 
 
+def tray_two_levels() -> Fixture:
+    """Open tray 80 x 60 x 20, walls and floor 2, whose floor is 3.5 thick over its left half (x 2..40): the
+    class of a floor with two thickness levels meeting side walls. The walls' patches, offset from their outer
+    skins, run down past both levels' mid-surfaces (z = 1 and z = 1.75); what hangs below them is peeled, and
+    the step between the levels then meets the walls.
+    Faces: 13 (5 outside, rim, 4 inside walls, 2 floor levels and the step between them).
+    Volume: 80 * 60 * 20 - 76 * 56 * 18 + 38 * 56 * 1.5 = 22584.
+    """
+    tray = box(0, 0, 0, 80, 60, 20) - box(2, 2, 2, 76, 56, 20)
+    part = tray + box(2, 2, 2, 38, 56, 1.5)
+    return Fixture(single_solid(part), 80 * 60 * 20 - 76 * 56 * 18 + 38 * 56 * 1.5, 13)
+
+
+def tapered_box(length: float, width: float, z0: float, z1: float, inset: float, slope: float) -> Solid:
+    """A box whose sides lean inwards by `slope` (run per rise) from z0 to z1; at height z each side lies
+    `inset + slope * z` inside the rectangle 0..length by 0..width."""
+    def ring(z: float) -> Wire:
+        d = inset + slope * z
+        return Wire.make_polygon([(d, d, z), (length - d, d, z), (length - d, width - d, z), (d, width - d, z)], close=True)
+    return Solid.make_loft([ring(z0), ring(z1)], ruled=True)
+
+
+def frustum_volume(length: float, width: float, z0: float, z1: float, inset: float, slope: float) -> float:
+    """Volume of tapered_box: the integral of (length - 2 d(z)) (width - 2 d(z)) dz with d = inset + slope z."""
+    def primitive(z: float) -> float:
+        a, b = length - 2 * inset, width - 2 * inset
+        return a * b * z - slope * (a + b) * z * z + 4 / 3 * slope * slope * z**3
+    return primitive(z1) - primitive(z0)
+
+
+def box_drafted() -> Fixture:
+    """Open box 80 x 60 x 20 (at its base), floor 2, walls 2 thick (normal to them) with a 3 degree draft:
+    the class of a moulded housing. The walls' mid-patches lean, so they meet the floor's patch inside the
+    band the floor's patch keeps under them; the floor's strip past each wall's foot lies in the wall and
+    hangs free, and is peeled.
+    Faces: 11 (outside: base and 4 sides; rim; inside: floor and 4 sides).
+    Volume: the outer frustum less the cavity's, from z = 2 to the top.
+    """
+    slope = math.tan(math.radians(3))
+    inner = 2 / math.cos(math.radians(3))
+    outer = tapered_box(80, 60, 0, 20, 0, slope)
+    cavity = tapered_box(80, 60, 2, 22, inner, slope)  # pokes out of the top: no coplanar cap
+    volume = frustum_volume(80, 60, 0, 20, 0, slope) - frustum_volume(80, 60, 2, 20, inner, slope)
+    return Fixture(single_solid(outer - cavity), volume, 11)
+
+
+def drafted_rounded_prism(length: float, width: float, radius: float, z0: float, height: float, inset: float,
+                          slope: float) -> Solid:
+    """A prism over the rectangle 0..length by 0..width with rounded vertical corners, its sides leaning inwards
+    by `slope` (run per rise) from z0 up by `height`: at height z each side lies `inset + slope * z` inside, the
+    corners' radius shrinking alike (cones)."""
+    d = inset + slope * z0
+    sketch = Plane.XY.offset(z0) * RectangleRounded(length - 2 * d, width - 2 * d, radius - d)
+    prism = extrude(sketch, amount=height, taper=math.degrees(math.atan(slope)))
+    return prism.moved(Location((length / 2, width / 2, 0)))
+
+
+def drafted_rounded_area_integral(length: float, width: float, radius: float, z0: float, z1: float, inset: float,
+                                  slope: float) -> float:
+    """Volume of drafted_rounded_prism: its section (length - 2d)(width - 2d) - (4 - pi)(radius - d)^2, with
+    d = inset + slope z, is quadratic in z, so Simpson's rule is exact."""
+    def area(z: float) -> float:
+        d = inset + slope * z
+        return (length - 2 * d) * (width - 2 * d) - (4 - math.pi) * (radius - d) ** 2
+    return (z1 - z0) / 6 * (area(z0) + 4 * area((z0 + z1) / 2) + area(z1))
+
+
+def box_drafted_rounded() -> Fixture:
+    """box_drafted with its vertical corners rounded R 6 outside (the moulded housing class): the corners are
+    coaxial cones, their patches meet the walls' drafted patches edge to edge.
+    Faces: 19 (outside: base, 4 sides, 4 cones; rim; inside: floor, 4 sides, 4 cones).
+    Volume: the outer drafted prism less the cavity's, from z = 2 to the top.
+    """
+    slope = math.tan(math.radians(3))
+    inner = 2 / math.cos(math.radians(3))
+    outer = drafted_rounded_prism(80, 60, 6, 0, 20, 0, slope)
+    cavity = drafted_rounded_prism(80, 60, 6, 2, 20, inner, slope)  # pokes out of the top: no coplanar cap
+    volume = drafted_rounded_area_integral(80, 60, 6, 0, 20, 0, slope) - drafted_rounded_area_integral(
+        80, 60, 6, 2, 20, inner, slope)
+    return Fixture(single_solid(outer - cavity), volume, 19)
+
+
 PARTS: list[Callable[[], Fixture]] = [
     flat_plate,
     l_bracket,
@@ -409,6 +493,9 @@ PARTS: list[Callable[[], Fixture]] = [
     pipe_tee,
     cover_pin,
     plate_hairline_groove,
+    tray_two_levels,
+    box_drafted,
+    box_drafted_rounded,
 ]
 
 

@@ -9,9 +9,11 @@ use crate::error::Error;
 use crate::exit::Exit;
 use crate::geom::inside::SolidMesh;
 use crate::kernel::client::killed_from_outside;
+use crate::kernel::client::Sidecar;
 use crate::kernel::SidecarError;
 use crate::load::{self, MeshRequest};
 use crate::model::params::Position;
+use crate::model::shapes::Shells;
 use crate::model::tolerance;
 use crate::output::assemble::{self, Asked};
 use crate::output::files::Files;
@@ -89,17 +91,23 @@ fn run_once(args: &RunArgs) -> Result<Exit, Error> {
     timings.trim = since(t);
 
     let t = Instant::now();
-    let stitched = stitch::stitch_part(&mut kernel, trimmed, &infos, &meshes, fuzzy).map_err(failed)?;
+    let mut stitched = stitch::stitch_part(&mut kernel, trimmed, &infos, &meshes, fuzzy).map_err(failed)?;
     warnings.extend(stitched.warnings.iter().cloned());
     let assembled = shells::make_shells(&mut kernel, &stitched, fuzzy).map_err(failed)?;
-    warnings.extend(assembled.warning.clone());
     timings.stitch = since(t);
 
     let t = Instant::now();
     let legend = assemble::thickness_legend(&patches.made);
-    let (fused, made) = (&stitched.fused, &patches.made);
+    let made = &patches.made;
     let kept = if args.keep_solids { shells::kept_solids(&part, &pairings) } else { Vec::new() };
-    shells::write_step(&mut kernel, &files, made, fused, &assembled.shells, &legend, kept, &args.input)?;
+    let write = |kernel: &mut Sidecar, stitched: &stitch::Outcome, shells: &Shells| {
+        shells::write_step(kernel, &files, made, &stitched.fused, shells, &legend, kept.clone(), &args.input)
+    };
+    let (mut assembled, written, left_out) =
+        shells::write_checked(&mut kernel, &mut stitched, assembled, fuzzy, &args.input, write)?;
+    warnings.extend(left_out);
+    shells::checked(&mut assembled, &written, &stitched.fused);
+    warnings.extend(assembled.warning.clone());
     kernel.shutdown();
     timings.write = since(t);
     timings.total = since(started);

@@ -35,7 +35,7 @@ from .protocol.args import (
 )
 from .protocol.errors import BadArgs, one_line
 from .protocol.handles import HandleStore
-from .write import shells, step_writer
+from .write import readback, shells, step_writer
 
 Op = Callable[[HandleStore, dict[str, Any]], dict[str, Any]]
 
@@ -136,7 +136,14 @@ def make_shells(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
             used[face_id] = j
         if not group:
             raise BadArgs(f"shell {j} is empty: list at least one face per shell")
-    compound, described = shells.make_shells(face_map, groups, require_non_negative(args, "fuzzy"))
+    merge = args.get("merge", [])
+    if not isinstance(merge, list):
+        raise BadArgs(f"`merge` must be a list of face lists, got {merge!r}")
+    for j, group in enumerate(merge):
+        faces = index_list(group, face_map.Size(), "face", "the fused shape")
+        if len(faces) < 2 or any(f not in used for f in faces) or len({used[f] for f in faces}) != 1:
+            raise BadArgs(f"merge set {j} must list two or more faces of one shell, got {group!r}")
+    compound, described = shells.make_shells(face_map, groups, require_non_negative(args, "fuzzy"), merge)
     return {"handle": store.put(compound), **described}
 
 
@@ -151,7 +158,13 @@ def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     if not isinstance(kept, list):
         raise BadArgs(f"`solids` must be a list, got {kept!r}")
     solids = [_kept_solid(store, entry) for entry in kept]
-    return {"path": path, "bytes": step_writer.write_step(path, shape, faces, preview, solids)}
+    check = args.get("check", False)
+    if not isinstance(check, bool):
+        raise BadArgs(f"`check` must be true or false, got {check!r}")
+    written = {"path": path, "bytes": step_writer.write_step(path, shape, faces, preview, solids)}
+    if check:
+        written["valid"], written["invalid"] = readback.check_written(path, shape)
+    return written
 
 
 def _kept_solid(store: HandleStore, entry: Any) -> tuple[str, TopoDS_Shape]:

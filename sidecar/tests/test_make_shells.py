@@ -197,3 +197,73 @@ def test_faces_joined_only_through_an_internal_edge_are_written_as_separate_vali
     back = read_step(path)
     assert indexed_map(back, TopAbs_SHELL).Size() == 2
     assert BRepCheck_Analyzer(back).IsValid()
+
+
+def explored_and_distinct_faces(shape):
+    """(faces met by TopExp_Explorer, distinct faces): a reader that puts one face into two shells counts twice."""
+    from OCP.TopExp import TopExp_Explorer
+
+    explorer, met = TopExp_Explorer(shape, TopAbs_FACE), 0
+    while explorer.More():
+        met += 1
+        explorer.Next()
+    return met, indexed_map(shape, TopAbs_FACE).Size()
+
+
+def edge_components(shape):
+    """Groups of faces connected through shared edges (the judge's `components`)."""
+    ancestors = EdgeFaces()
+    TopExp.MapShapesAndAncestors_s(shape, TopAbs_EDGE, TopAbs_FACE, ancestors)
+    faces = indexed_map(shape, TopAbs_FACE)
+    parent = list(range(faces.Size()))
+
+    def root(a):
+        while parent[a] != a:
+            a = parent[a]
+        return a
+
+    for i in range(ancestors.Size()):
+        ids = sorted({faces.FindIndex(f) - 1 for f in ancestors.FindFromIndex(i + 1)})
+        for b in ids[1:]:
+            parent[root(b)] = root(ids[0])
+    return len({root(i) for i in range(faces.Size())})
+
+
+def test_t_joints_are_written_as_manifold_shells_that_read_back_whole(client, tmp_path):
+    # A floor with two walls standing on it: two T-joint edges of three faces each. The STEP reader splits a
+    # non-manifold shell itself, and then put one face into two shells or left a shell whose faces do not meet.
+    # Manifold shells in one surface model read back as written: each face once, one piece, valid.
+    f = fused(client, horizontal(), vertical(20.0, z0=1.0), vertical(40.0, z0=1.0))
+    every = list(range(len(f["faces"])))
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[every])
+    assert ok["valid"] is True and ok["shells"] >= 2 and ok["components"] == 1
+    written = client.session.store.get(ok["handle"])
+    shells = indexed_map(written, TopAbs_SHELL)
+    for k in range(shells.Size()):
+        assert max(faces_per_edge(shells.FindKey(k + 1))) <= 2, "each shell is manifold"
+    path = tmp_path / "tt.step"
+    client.ok("write_step", path=str(path), handle=ok["handle"], faces=[])
+    assert path.read_text(encoding="latin-1").count("SHELL_BASED_SURFACE_MODEL") == 1
+    back = read_step(path)
+    assert explored_and_distinct_faces(back) == (len(every), len(every))
+    assert edge_components(back) == 1
+    assert faces_per_edge(back).count(3) == 2
+    assert BRepCheck_Analyzer(back).IsValid()
+
+
+def test_a_merge_set_becomes_one_face_and_keeps_its_edges_shared(client, tmp_path):
+    # Two coplanar pieces side by side (one patch's, say a strip grown from its edge), the second meeting a wall
+    # in an L: merged into one face, still sharing the L's edge with the wall once written.
+    left = rectangle((0, 0, 1), (10, 0, 1), (10, 40, 1), (0, 40, 1))
+    right = rectangle((10, 0, 1), (20, 0, 1), (20, 40, 1), (10, 40, 1))
+    f = fused(client, left, right, vertical(20.0, z0=1.0))
+    pieces = {face["patch"]: i for i, face in enumerate(f["faces"])}
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[list(range(3))],
+                   merge=[[pieces[0], pieces[1]]])
+    assert len(ok["faces"]) == 2 and ok["valid"] is True
+    assert sorted(ok["faces"]) == sorted([pieces[0], pieces[2]])
+    path = tmp_path / "merged.step"
+    client.ok("write_step", path=str(path), handle=ok["handle"], faces=[])
+    back = read_step(path)
+    assert sorted(round(a) for a in face_areas(back)) == [800, 1560]
+    assert edge_components(back) == 1

@@ -38,6 +38,7 @@ impl From<wire::Shells> for Shells {
         Shells {
             handle: w.handle,
             count: w.shells,
+            components: w.components,
             faces: w.faces,
             valid: w.valid,
             invalid: w.invalid,

@@ -32,9 +32,16 @@ pub trait Kernel {
         self.call::<protocol::Fused>(&Request::Fuse { patches, fuzzy, split_internal }).map(Fused::from)
     }
 
-    /// One shell per set of faces of the fused shape `handle`.
-    fn make_shells(&mut self, handle: Handle, shells: Vec<Vec<usize>>, fuzzy: f64) -> Result<Shells, SidecarError> {
-        self.call::<protocol::Shells>(&Request::MakeShells { handle, shells, fuzzy }).map(Shells::from)
+    /// One shell per set of faces of the fused shape `handle`, the faces of each set of `merge` made one face
+    /// where they lie on one surface.
+    fn make_shells(
+        &mut self,
+        handle: Handle,
+        shells: Vec<Vec<usize>>,
+        merge: Vec<Vec<usize>>,
+        fuzzy: f64,
+    ) -> Result<Shells, SidecarError> {
+        self.call::<protocol::Shells>(&Request::MakeShells { handle, shells, merge, fuzzy }).map(Shells::from)
     }
 
     /// The free `edges` of the fused shape `handle` sampled `samples` times each, with the rays' meetings with

@@ -122,6 +122,7 @@ pub enum Request {
     MakeShells {
         handle: u64,
         shells: Vec<Vec<usize>>,
+        merge: Vec<Vec<usize>>,
         fuzzy: f64,
     },
     ProbeEdges {
@@ -152,6 +153,9 @@ pub enum Request {
         /// Solids of the input written too, each as its own named shape.
         #[serde(skip_serializing_if = "Vec::is_empty")]
         solids: Vec<KeptSolid>,
+        /// Read the file back and name the faces that fail BRepCheck there.
+        #[serde(skip_serializing_if = "std::ops::Not::not")]
+        check: bool,
     },
     /// Frees kernel shapes; midsurf runs one part per process and sends none.
     #[allow(dead_code)]
@@ -259,6 +263,12 @@ pub struct EntityProblem {
 pub struct Written {
     pub path: String,
     pub bytes: u64,
+    /// With `check`: whether the file reads back valid, and the faces (index in the written shape) whose
+    /// read-back face fails BRepCheck.
+    #[serde(default)]
+    pub valid: Option<bool>,
+    #[serde(default)]
+    pub invalid: Vec<usize>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -307,6 +317,8 @@ pub struct Fused {
 pub struct Shells {
     pub handle: u64,
     pub shells: usize,
+    /// Edge-connected pieces of the shells (several manifold shells meet at a T-joint's edge).
+    pub components: usize,
     pub faces: Vec<usize>,
     pub valid: bool,
     /// Faces (indices into `faces`) that fail the kernel's check on their own; empty when `valid`.

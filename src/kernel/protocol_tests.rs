@@ -25,6 +25,7 @@ fn requests_encode_as_exact_json() {
                 }],
                 preview: None,
                 solids: vec![],
+                check: false,
             },
             r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[{"face":0,"name":"patch 1 t=2.000","color":[1.0,0.5,0.0],"thickness":2.0}]}}"#,
         ),
@@ -35,8 +36,9 @@ fn requests_encode_as_exact_json() {
                 faces: vec![],
                 preview: Some("o.glb".into()),
                 solids: vec![],
+                check: true,
             },
-            r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"preview":"o.glb"}}"#,
+            r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"preview":"o.glb","check":true}}"#,
         ),
         (
             Request::WriteStep {
@@ -45,6 +47,7 @@ fn requests_encode_as_exact_json() {
                 faces: vec![],
                 preview: None,
                 solids: vec![KeptSolid { handle: 3, name: "solid 2 not_thin_walled".into() }],
+                check: false,
             },
             r#"{"id":0,"op":"write_step","args":{"path":"o.step","handle":7,"faces":[],"solids":[{"handle":3,"name":"solid 2 not_thin_walled"}]}}"#,
         ),
@@ -81,8 +84,8 @@ fn requests_encode_as_exact_json() {
             r#"{"id":0,"op":"fuse","args":{"patches":[3,4],"fuzzy":0.001}}"#,
         ),
         (
-            Request::MakeShells { handle: 9, shells: vec![vec![0, 1], vec![2]], fuzzy: 0.5 },
-            r#"{"id":0,"op":"make_shells","args":{"handle":9,"shells":[[0,1],[2]],"fuzzy":0.5}}"#,
+            Request::MakeShells { handle: 9, shells: vec![vec![0, 1], vec![2]], merge: vec![vec![0, 1]], fuzzy: 0.5 },
+            r#"{"id":0,"op":"make_shells","args":{"handle":9,"shells":[[0,1],[2]],"merge":[[0,1]],"fuzzy":0.5}}"#,
         ),
         (
             Request::ProbeEdges {

@@ -45,9 +45,12 @@ pub struct FusedEdge {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shells {
     pub handle: Handle,
-    /// How many shells were written: more than the sets asked for where faces joined only through an edge
-    /// inside one of them (which a STEP file does not keep) were split apart.
+    /// How many shells were written: manifold shells, several sharing a T-joint's edge, and more than the sets
+    /// asked for where faces joined only through an edge inside one of them (which a STEP file does not keep)
+    /// were split apart.
     pub count: usize,
+    /// Edge-connected pieces of the shells: one per connected part wanted.
+    pub components: usize,
     /// Per face of the shells, the fused face it is (a face closed on itself may be written as two pieces).
     pub faces: Vec<usize>,
     pub valid: bool,

@@ -84,7 +84,7 @@ pub fn report(
             faces: shells.faces.len(),
             shells: shells.count,
             valid: shells.valid,
-            area: written_area(&shells, &fused),
+            area: written_area(&fused, &keep),
             free_edges: free,
         },
         topology,

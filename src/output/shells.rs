@@ -16,7 +16,7 @@ use crate::model::warning::{patch_list, Warning};
 use crate::pairing::driver::SolidPairing;
 use crate::patch::make::Made;
 use crate::stitch::Outcome;
-use crate::trim::connected_sets;
+use crate::trim::{connected_sets, merge_sets};
 
 /// The shells made and the warning when the kernel finds them invalid.
 pub struct Assembled {
@@ -26,7 +26,8 @@ pub struct Assembled {
 
 pub fn make_shells<K: Kernel>(kernel: &mut K, stitched: &Outcome, fuzzy: f64) -> Result<Assembled, SidecarError> {
     let sets = connected_sets(&stitched.fused, &stitched.keep);
-    let shells = kernel.make_shells(stitched.fused.handle, sets, fuzzy)?;
+    let merge = merge_sets(&stitched.fused, &stitched.keep);
+    let shells = kernel.make_shells(stitched.fused.handle, sets, merge, fuzzy)?;
     let warning = invalid_output_warning(&shells, &stitched.fused);
     Ok(Assembled { shells, warning })
 }
@@ -54,7 +55,7 @@ pub fn write_step<K: Kernel>(
     legend: &[LegendEntry],
     solids: Vec<KeptSolid>,
     input: &Path,
-) -> Result<(), Error> {
+) -> Result<Written, Error> {
     let faces: Vec<FaceAttributes> = shells
         .faces
         .iter()
@@ -74,9 +75,74 @@ pub fn write_step<K: Kernel>(
         p.temp.to_str().map(str::to_string).ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
     };
     let preview = files.preview.as_ref().map(utf8).transpose()?;
-    let request = Request::WriteStep { path: utf8(&files.step)?, handle: shells.handle, faces, preview, solids };
-    kernel.call::<Written>(&request).map_err(|error| Error::Sidecar { path: input.to_path_buf(), error })?;
-    Ok(())
+    // Read back only what the kernel doubts: a shape valid in memory reads back valid.
+    let check = !shells.valid;
+    let request = Request::WriteStep { path: utf8(&files.step)?, handle: shells.handle, faces, preview, solids, check };
+    kernel.call::<Written>(&request).map_err(|error| Error::Sidecar { path: input.to_path_buf(), error })
+}
+
+/// Writes the mid-surface with `write`; when the file read back has broken faces, leaves them out and writes it
+/// again without them (once). When the file is still broken without them (a shell the reader cannot take),
+/// leaving them out only costs coverage: it is written as it was, and the report names the faces that fail.
+/// Returns the shells written, the write's reply and the warning naming the faces left out.
+pub fn write_checked<K: Kernel>(
+    kernel: &mut K,
+    stitched: &mut Outcome,
+    assembled: Assembled,
+    fuzzy: f64,
+    input: &Path,
+    write: impl Fn(&mut K, &Outcome, &Shells) -> Result<Written, Error>,
+) -> Result<(Assembled, Written, Option<Warning>), Error> {
+    let failed = |error| Error::Sidecar { path: input.to_path_buf(), error };
+    let written = write(kernel, stitched, &assembled.shells)?;
+    if written.invalid.is_empty() {
+        return Ok((assembled, written, None));
+    }
+    let kept_before = stitched.keep.clone();
+    let left_out = leave_out(stitched, &assembled.shells, &written.invalid);
+    let again = make_shells(kernel, stitched, fuzzy).map_err(failed)?;
+    let rewritten = write(kernel, stitched, &again.shells)?;
+    if rewritten.valid != Some(false) {
+        return Ok((again, rewritten, Some(left_out)));
+    }
+    stitched.keep = kept_before;
+    let assembled = make_shells(kernel, stitched, fuzzy).map_err(failed)?;
+    let written = write(kernel, stitched, &assembled.shells)?;
+    Ok((assembled, written, None))
+}
+
+/// Leaves out of `stitched` the pieces whose faces of `shells` (indices `invalid`) failed the check once written
+/// and read back: a broken face is worse than a hole a user can see. Returns the warning naming them.
+fn leave_out(stitched: &mut Outcome, shells: &Shells, invalid: &[usize]) -> Warning {
+    let mut pieces: Vec<usize> = invalid.iter().map(|&j| shells.faces[j]).collect();
+    pieces.sort_unstable();
+    pieces.dedup();
+    for &p in &pieces {
+        stitched.keep[p] = false;
+    }
+    let fused = &stitched.fused;
+    let patches: BTreeSet<usize> = pieces.iter().map(|&p| fused.faces[p].patch).collect();
+    let area: f64 = pieces.iter().map(|&p| fused.faces[p].area).sum();
+    Warning {
+        code: "faces_left_out",
+        message: format!(
+            "{} face(s) of patches {}, {area:.3} mm2 in all, fail the kernel's validity check (BRepCheck) once \
+             written and read back; left out of the mid-surface",
+            pieces.len(),
+            patch_list(&patches)
+        ),
+        solid: None,
+        faces: Vec::new(),
+    }
+}
+
+/// The file's own check (when it was read back) stands for the shells' validity and names the faces that fail.
+pub fn checked(assembled: &mut Assembled, written: &Written, fused: &Fused) {
+    if let Some(valid) = written.valid {
+        assembled.shells.valid = valid;
+        assembled.shells.invalid = written.invalid.clone();
+        assembled.warning = invalid_output_warning(&assembled.shells, fused);
+    }
 }
 
 /// Faces failing the kernel's check are written as they are (readers usually repair them), but a script must
@@ -98,11 +164,10 @@ pub fn invalid_output_warning(shells: &Shells, fused: &Fused) -> Option<Warning>
     })
 }
 
-/// The area of the faces written. A face closed on itself is written as two pieces that both name it: count
-/// each fused face once (its pieces make it up exactly).
-pub fn written_area(shells: &Shells, fused: &Fused) -> f64 {
-    let written: BTreeSet<usize> = shells.faces.iter().copied().collect();
-    written.iter().map(|&p| fused.faces[p].area).sum()
+/// The area of the faces written: every kept piece is written, as a face of its own, as the two halves of a face
+/// closed on itself, or inside the face its merge set makes (so not from the written faces' own pieces).
+pub fn written_area(fused: &Fused, keep: &[bool]) -> f64 {
+    fused.faces.iter().zip(keep).filter(|(_, &k)| k).map(|(f, _)| f.area).sum()
 }
 
 #[cfg(test)]
@@ -125,7 +190,7 @@ mod tests {
     }
 
     fn shells(faces: Vec<usize>, valid: bool, invalid: Vec<usize>) -> Shells {
-        Shells { handle: 2, count: 1, faces, valid, invalid, edges: 0, vertices: 0 }
+        Shells { handle: 2, count: 1, components: 1, faces, valid, invalid, edges: 0, vertices: 0 }
     }
 
     #[test]
@@ -142,9 +207,8 @@ mod tests {
     }
 
     #[test]
-    fn a_face_split_at_its_seam_counts_once_in_the_written_area() {
+    fn the_written_area_is_the_kept_pieces_area() {
         let fused = fused(&[(0, 2.0), (1, 3.0), (2, 5.0)]);
-        // Fused face 1 (a tube) is written as two pieces, both naming it.
-        assert_eq!(written_area(&shells(vec![0, 1, 1, 2], true, vec![]), &fused), 10.0);
+        assert_eq!(written_area(&fused, &[true, false, true]), 7.0);
     }
 }

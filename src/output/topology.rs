@@ -15,7 +15,7 @@ pub struct Topology {
     pub vertices: usize,
     /// V - E + F.
     pub euler: i64,
-    /// Shells written (edge-connected sets of faces): one per connected part wanted.
+    /// Edge-connected sets of faces written: one per connected part wanted.
     pub components: usize,
     /// Edges shared by three or more faces (T- and X-joints).
     pub nonmanifold_edges: usize,
@@ -52,7 +52,7 @@ pub fn summarise(
         edges: shells.edges,
         vertices: shells.vertices,
         euler: shells.vertices as i64 - shells.edges as i64 + faces as i64,
-        components: shells.count,
+        components: shells.components,
         nonmanifold_edges,
         free_edges: free.map(|f| FreeEdges {
             rim_length: round(f.rim_length, 2),

@@ -14,6 +14,9 @@ use crate::kernel::{Kernel, SidecarError};
 use crate::model::shapes::{EdgeProbe, Fused};
 use crate::trim::Branch;
 
+/// What a pass makes: the patches fused again, the pieces kept and the branches dropped.
+pub(super) type Grown = (Fused, Vec<bool>, Vec<Branch>);
+
 /// Which free edges a pass grows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Pass {
@@ -22,6 +25,9 @@ pub(super) enum Pass {
     /// The free edges left by the joints (an L-joint's overshoot that stayed joined to its patch past a wall's
     /// end, for one), grown to the rim when it is within reach.
     Rims,
+    /// The open edges still left: grown to a partner patch only. Pieces peeled off after a joints pass leave
+    /// edges whose partner is now in reach (a wall's foot over a floor whose overshoot went).
+    Partners,
 }
 
 /// One pass of `stitch` over the free edges `free` of `fused` and their probes (with meetings for a joints
@@ -39,7 +45,7 @@ pub(super) fn grow<K: Kernel>(
     fuzzy: f64,
     pass: Pass,
     tally: &mut JointTally,
-) -> Result<Option<(Fused, Vec<bool>, Vec<Branch>)>, SidecarError> {
+) -> Result<Option<Grown>, SidecarError> {
     let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
     let patch_of: Vec<usize> = fused.faces.iter().map(|f| f.patch).collect();
 
@@ -50,7 +56,7 @@ pub(super) fn grow<K: Kernel>(
         let patch = patch_of[face];
         let length = fused.edges[edge].length;
         let verdict = match pass {
-            Pass::Joints => {
+            Pass::Joints | Pass::Partners => {
                 let open = open(fused, face, p, patches, solids);
                 let info = &patches[patch];
                 let through = |k, length| {
@@ -63,6 +69,7 @@ pub(super) fn grow<K: Kernel>(
             Pass::Rims => Verdict::Rim,
         };
         let grow = match verdict {
+            Verdict::Rim | Verdict::Unresolved if pass == Pass::Partners => None,
             verdict @ (Verdict::Rim | Verdict::Unresolved) => match to_rim(fused, edge, face, p, patches, solids) {
                 Some(lengths) => Some((
                     patch,
@@ -97,7 +104,7 @@ pub(super) fn grow<K: Kernel>(
     let (steps, bridged) = step_quads(&open_edges, patches, tally);
     let planned: Vec<Planned> =
         grows.into_iter().enumerate().filter(|(k, _)| !bridged.contains(k)).filter_map(|(_, g)| g).collect();
-    if pass == Pass::Rims && planned.is_empty() && steps.is_empty() {
+    if pass != Pass::Joints && planned.is_empty() && steps.is_empty() {
         return Ok(None);
     }
     // (patch, index among the faces of the extension's handle) of each made strip and corner.
@@ -280,7 +287,7 @@ type Planned<'a> = (usize, StripRequest, JointKey, &'a EdgeProbe);
 type StepQuad = (usize, CornerRequest, JointKey, [f64; 2]);
 
 /// Edges and length per joint key, in key order (deterministic).
-#[derive(Default)]
+#[derive(Default, Clone)]
 pub(super) struct JointTally(BTreeMap<JointKey, (usize, f64)>);
 
 impl JointTally {

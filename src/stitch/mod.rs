@@ -5,6 +5,7 @@ mod bridge;
 mod edges;
 mod grow;
 pub mod joint;
+mod peel;
 mod reach;
 #[cfg(test)]
 mod tests;
@@ -20,7 +21,7 @@ use crate::model::shapes::{EdgeProbe, Fused};
 use crate::model::warning::Warning;
 use crate::trim::{find_branches, keep_mask, outside_material, Branch, Trimmed};
 use edges::classify_free;
-use grow::{grow, JointTally, Pass};
+use grow::{grow, Grown, JointTally, Pass};
 pub use reach::{branch_limits, patch_infos};
 
 /// What one patch brings: its thickness, its solid (index into the solids' meshes) and how far its joints
@@ -118,8 +119,9 @@ pub(super) fn trim(fused: &Fused, patches: &[PatchInfo], solids: &[SolidMesh]) -
 }
 
 /// Extends the open edges of `fused` (pieces `keep`, already trimmed) and fuses again (also without any
-/// extension: the final fuse splits faces along joints that end inside them). When edges are still open after
-/// that, one more pass grows the free edges that stop short of the rim.
+/// extension: the final fuse splits faces along joints that end inside them), peeling the dangling pieces after
+/// each pass. When edges are still open after that, a second pass grows the free edges that stop short of the
+/// rim, and a third the open edges to a partner patch.
 pub fn stitch<K: Kernel>(
     kernel: &mut K,
     fused: &Fused,
@@ -132,20 +134,81 @@ pub fn stitch<K: Kernel>(
     let (free, probes) = free_and_probed(kernel, fused, keep, patches, true)?;
     let grown = grow(kernel, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
     let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
+    peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
     // The free edges of the result, probed once for both the rims pass and the final count.
     let (mut free, mut probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
     let (mut counted, mut open_patches) = classify_free(&fused, &free, &probes, patches, solids);
     if counted.open_edges > 0 {
         if let Some((again, again_keep, more)) =
-            grow(kernel, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
+            later_pass(kernel, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
         {
             (fused, keep) = (again, again_keep);
             branches.extend(more);
+            peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
+            (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
+            (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
+        }
+    }
+    if counted.open_edges > 0 {
+        let (open_free, open_probes) = free_and_probed(kernel, &fused, &keep, patches, true)?;
+        if let Some((again, again_keep, more)) = later_pass(
+            kernel,
+            &fused,
+            &keep,
+            &open_free,
+            &open_probes,
+            patches,
+            solids,
+            fuzzy,
+            Pass::Partners,
+            &mut tally,
+        )? {
+            (fused, keep) = (again, again_keep);
+            branches.extend(more);
+            peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
             (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
             (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
         }
     }
     Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches })
+}
+
+/// A pass after the first only improves on what the first made: when the kernel fails it (a fuse that gives up),
+/// the stitching and its joint tally stand as they were; a kernel that stops answering is still an error.
+#[allow(clippy::too_many_arguments)]
+fn later_pass<K: Kernel>(
+    kernel: &mut K,
+    fused: &Fused,
+    keep: &[bool],
+    free: &[(usize, usize)],
+    probes: &[EdgeProbe],
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+    fuzzy: f64,
+    pass: Pass,
+    tally: &mut JointTally,
+) -> Result<Option<Grown>, SidecarError> {
+    let before = tally.clone();
+    match grow(kernel, fused, keep, free, probes, patches, solids, fuzzy, pass, tally) {
+        Err(e) if e.code().is_some() => {
+            *tally = before;
+            Ok(None)
+        }
+        other => other,
+    }
+}
+
+fn peel_dangling(
+    fused: &Fused,
+    keep: &mut [bool],
+    branches: &mut Vec<Branch>,
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+) {
+    for b in peel::dangling(fused, keep, patches, solids) {
+        keep[b.piece] = false;
+        branches.push(b);
+    }
 }
 
 /// The free edges of `fused` (pieces `keep`) and their probes, with their meetings with the kept pieces when

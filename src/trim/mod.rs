@@ -9,11 +9,14 @@
 //! patch's edge stays. A hanging piece touching no other patch stays only when so joined to a piece that is
 //! not a branch: overshoot corners joined only to branches go with them.
 
+use std::collections::BTreeSet;
+
 use glam::DVec3;
 use serde::Serialize;
 
 use crate::kernel::{Kernel, SidecarError};
 use crate::model::shapes::{Fused, FusedFace, Handle};
+
 use union_find::find;
 
 mod union_find;
@@ -56,6 +59,8 @@ pub enum TrimReason {
     Overshoot,
     /// It lies outside the material (see [`outside_material`]).
     Outside,
+    /// It lies out of its own wall and hangs free (see `stitch::peel`).
+    Dangling,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -221,6 +226,58 @@ pub fn keep_mask(pieces: usize, branches: &[Branch]) -> Vec<bool> {
         keep[b.piece] = false;
     }
     keep
+}
+
+/// The kept pieces of one patch joined only to each other (through edges no other kept piece uses), in sets of
+/// two or more, each sorted, in order of their lowest piece: a strip grown from an edge, a band left between a
+/// crossing and a peeled piece. One face each in the written shells: the STEP then has a face per stretch of
+/// wall, not slivers a mesher would have to respect, and each face's measured thickness is its wall's. Two
+/// pieces that also share an edge another piece uses (a T-joint's edge) stay apart: merged, that edge would lie
+/// inside the face, which a STEP face cannot hold.
+pub fn merge_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
+    let n = fused.faces.len();
+    let kept_on = |e: usize| fused.edges[e].faces.iter().copied().filter(|&f| keep[f]).collect::<Vec<usize>>();
+    let inner: Vec<Option<(usize, usize)>> = (0..fused.edges.len())
+        .map(|e| match kept_on(e)[..] {
+            [a, b] if a != b && fused.faces[a].patch == fused.faces[b].patch => Some((a, b)),
+            _ => None,
+        })
+        .collect();
+    // Per set (by its root): the edges of its pieces that must stay boundary edges.
+    let mut outer: Vec<BTreeSet<usize>> = (0..n)
+        .map(|f| {
+            if keep[f] {
+                fused.faces[f].edges.iter().copied().filter(|&e| inner[e].is_none()).collect()
+            } else {
+                BTreeSet::new()
+            }
+        })
+        .collect();
+    let mut parent: Vec<usize> = (0..n).collect();
+    for &(a, b) in inner.iter().flatten() {
+        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+        if ra == rb || !outer[ra].is_disjoint(&outer[rb]) {
+            continue;
+        }
+        let (root, other) = (ra.min(rb), ra.max(rb));
+        parent[other] = root;
+        let moved = std::mem::take(&mut outer[other]);
+        outer[root].extend(moved);
+    }
+    let mut sets: Vec<Vec<usize>> = Vec::new();
+    let mut set_of_root: Vec<Option<usize>> = vec![None; n];
+    for f in (0..n).filter(|&f| keep[f]) {
+        let root = find(&mut parent, f);
+        match set_of_root[root] {
+            Some(s) => sets[s].push(f),
+            None => {
+                set_of_root[root] = Some(sets.len());
+                sets.push(vec![f]);
+            }
+        }
+    }
+    sets.retain(|s| s.len() > 1);
+    sets
 }
 
 /// Groups the kept pieces into connected sets (through edges shared by two kept pieces), each sorted, in

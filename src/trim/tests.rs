@@ -181,3 +181,42 @@ fn kept_pieces_group_into_shells() {
     assert_eq!(connected_sets(&fused, &[true, false, true, false]), vec![vec![0, 2]]);
     assert_eq!(connected_sets(&fused, &[true, false, false, true]), vec![vec![0, 3]]);
 }
+
+#[test]
+fn merge_sets_join_pieces_of_one_patch_across_edges_only_they_share() {
+    let v = |x: f64| DVec3::new(x, 0.0, 0.0);
+    // Patch 0: pieces 0, 1, 2 in a row; 1 and 2 also meet piece 3 of patch 1 along their common edge (a T).
+    // Patch 1: pieces 3 and 4 side by side, and 4 is dropped.
+    let fused = Fused {
+        handle: 1,
+        faces: vec![
+            face(0, 1.0, vec![0]),
+            face(0, 1.0, vec![0, 1]),
+            face(0, 1.0, vec![1]),
+            face(1, 1.0, vec![1, 2]),
+            face(1, 1.0, vec![2]),
+        ],
+        edges: vec![
+            edge(vec![0, 1], v(0.0), v(1.0)),
+            edge(vec![1, 2, 3], v(1.0), v(2.0)),
+            edge(vec![3, 4], v(2.0), v(3.0)),
+        ],
+    };
+    assert_eq!(merge_sets(&fused, &[true, true, true, true, false]), vec![vec![0, 1]]);
+    assert_eq!(merge_sets(&fused, &[true; 5]), vec![vec![0, 1], vec![3, 4]]);
+}
+
+#[test]
+fn merge_sets_keep_apart_pieces_that_also_share_a_t_joints_edge() {
+    let v = |x: f64| DVec3::new(x, 0.0, 0.0);
+    // Pieces 0 and 1 of patch 0 share edge 0 (theirs alone) and edge 1, where piece 2 of patch 1 stands (a T
+    // ending on their common boundary): merged, the T's edge would lie inside the face.
+    let fused = Fused {
+        handle: 1,
+        faces: vec![face(0, 1.0, vec![0, 1]), face(0, 1.0, vec![0, 1]), face(1, 1.0, vec![1])],
+        edges: vec![edge(vec![0, 1], v(0.0), v(1.0)), edge(vec![0, 1, 2], v(1.0), v(2.0))],
+    };
+    assert!(merge_sets(&fused, &[true; 3]).is_empty());
+    // Without the T, the two pieces merge.
+    assert_eq!(merge_sets(&fused, &[true, true, false]), vec![vec![0, 1]]);
+}

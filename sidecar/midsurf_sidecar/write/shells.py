@@ -1,44 +1,52 @@
 """`make_shells`: shells assembled from faces of a fused shape (BRep_Builder, so shared edges stay shared and
 non-manifold edges are allowed), gathered in one compound: the shape written as the mid-surface."""
 
+from collections import deque
 from typing import Any
 
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools
+from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape, TopoDS_Shell
+from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
-from ..constants import FULL_TURN
+from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
 from ..geom.topology import IndexedShapeMap, indexed_map
 from ..protocol.errors import KernelError
 
 
 def make_shells(
-    face_map: IndexedShapeMap, shells: list[list[int]], fuzzy: float
+    face_map: IndexedShapeMap, shells: list[list[int]], fuzzy: float, merge: list[list[int]] | None = None
 ) -> tuple[TopoDS_Compound, dict[str, Any]]:
     """`face_map`: MapShapes(F, FACE); `shells`: valid, distinct 0-based indices into it. A face closed on
     itself is split in two at its seam first (closing_isolines), fuzzy `fuzzy`; its pieces keep its
     F-index.
 
-    Returns (S, the reply's `shells`, `faces`, `valid`, `invalid`, `edges` and `vertices`). `shells` counts
+    Returns (S, the reply's `shells`, `components`, `faces`, `valid`, `invalid`, `edges` and `vertices`). `shells` counts
     the shells written: a listed shell whose faces are joined only through INTERNAL edges is written as one
     shell per connected group (_edge_connected).
     """
     pieces = _pieces(face_map, [i for face_ids in shells for i in face_ids], fuzzy)
+    if merge:
+        _merge(pieces, merge, fuzzy)
     builder = BRep_Builder()
     compound = TopoDS_Compound()
     builder.MakeCompound(compound)
+    components = 0
     for face_ids in shells:
         for group in _edge_connected([face for face_id in face_ids for face in pieces[face_id]]):
-            shell = TopoDS_Shell()
-            builder.MakeShell(shell)
-            for face in group:
-                builder.Add(shell, face)
-            builder.Add(compound, shell)
+            components += 1
+            for manifold in _manifold(group):
+                shell = TopoDS_Shell()
+                builder.MakeShell(shell)
+                for face in manifold:
+                    builder.Add(shell, face)
+                builder.Add(compound, shell)
     own = indexed_map(compound, TopAbs_FACE)
     source = [-1] * own.Size()
     for face_id, faces in pieces.items():
@@ -51,12 +59,89 @@ def make_shells(
     invalid = [] if valid else [j for j in range(own.Size()) if not BRepCheck_Analyzer(own.FindKey(j + 1)).IsValid()]
     return compound, {
         "shells": compound.NbChildren(),
+        "components": components,
         "faces": source,
         "valid": valid,
         "invalid": invalid,
         "edges": indexed_map(compound, TopAbs_EDGE).Size(),
         "vertices": indexed_map(compound, TopAbs_VERTEX).Size(),
     }
+
+
+def _merge(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy: float) -> None:
+    """The faces of each of `groups` (one patch's, joined only to each other) made one face where they lie on
+    one surface; the group's first face id stands for the merged face, the others for none. All the faces are
+    unified at once, every edge but those inside a group kept (ShapeUpgrade_UnifySameDomain, faces only), so
+    a face whose edge is rebuilt is rebuilt with it and the shells' sharing holds (merging a group on its own
+    left its neighbours on edges the merged face no longer had: gaps once written). Groups holding a face split
+    at its seam are left out (merging would close the face on itself again); nothing changes when the
+    unification fails or gives faces that cannot be traced back."""
+    groups = [g for g in groups if all(len(pieces[i]) == 1 for i in g)]
+    if not groups:
+        return
+    inner = _group_edges(pieces, groups)
+    builder, compound, keep = BRep_Builder(), TopoDS_Compound(), ShapeMap()
+    builder.MakeCompound(compound)
+    for faces in pieces.values():
+        for face in faces:
+            builder.Add(compound, face)
+            explorer = TopExp_Explorer(face, TopAbs_EDGE)
+            while explorer.More():
+                if not inner.Contains(explorer.Current()):
+                    keep.Add(explorer.Current())
+                explorer.Next()
+    try:
+        merger = ShapeUpgrade_UnifySameDomain(compound, False, True, False)
+        merger.SetLinearTolerance(max(fuzzy, CONFUSION))
+        merger.SetAngularTolerance(SAME_DOMAIN_ANGLE)
+        merger.KeepShapes(keep)
+        merger.Build()
+    except Exception:  # OCCT raises its own Standard_Failure types: keep the faces as they are
+        return
+    history = merger.History()
+    owner = {i: g[0] for g in groups for i in g}
+    merged: dict[int, list[TopoDS_Shape]] = {i: [] for i in pieces}
+    taken = ShapeMap()
+    for i, faces in pieces.items():
+        for face in faces:
+            images = list(history.Modified(face)) if history.IsRemoved(face) or history.Modified(face).Size() else [face]
+            for image in images:
+                if taken.Add(image):
+                    merged[owner.get(i, i)].append(image)
+    result = indexed_map(merger.Shape(), TopAbs_FACE)
+    if taken.Size() != result.Size() or any(not result.Contains(f) for faces in merged.values() for f in faces):
+        return
+    # A merged face the kernel finds invalid (its wires rebuilt badly) is worse than the pieces it replaces.
+    originals = ShapeMap()
+    for faces in pieces.values():
+        for face in faces:
+            originals.Add(face)
+    made = [f for faces in merged.values() for f in faces if not originals.Contains(f)]
+    if not all(BRepCheck_Analyzer(f).IsValid() for f in made):
+        return
+    pieces.update(merged)
+
+
+def _group_edges(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]]) -> ShapeMap:
+    """The edges that two faces of one group share and no other face uses: the edges a merge may remove."""
+    uses = IndexedShapeMap()
+    count: dict[int, int] = {}
+    group_of_use: dict[int, set[int]] = {}
+    group_of = {i: k for k, g in enumerate(groups) for i in g}
+    for i, faces in pieces.items():
+        for face in faces:
+            explorer = TopExp_Explorer(face, TopAbs_EDGE)
+            while explorer.More():
+                e = uses.Add(explorer.Current())
+                count[e] = count.get(e, 0) + 1
+                group_of_use.setdefault(e, set()).add(group_of.get(i, -1 - i))
+                explorer.Next()
+    inner = ShapeMap()
+    for e, n in count.items():
+        owners = group_of_use[e]
+        if n == 2 and len(owners) == 1 and next(iter(owners)) >= 0:
+            inner.Add(uses.FindKey(e))
+    return inner
 
 
 def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dict[int, list[TopoDS_Shape]]:
@@ -141,3 +226,56 @@ def _edge_connected(faces: list[TopoDS_Shape]) -> list[list[TopoDS_Shape]]:
     for i, face in enumerate(faces):
         groups.setdefault(root(i), []).append(face)
     return list(groups.values())
+
+
+def _manifold(faces: list[TopoDS_Shape]) -> list[list[TopoDS_Shape]]:
+    """`faces` (edge-connected) as manifold shells, each edge-connected and consistently oriented, grown face by
+    face from the first (breadth first): a face joins the shell when none of its edges is used twice there
+    already and it runs each edge it shares opposite to the face there. A STEP reader splits a shell with a
+    T-joint's edge (three faces) itself, and may then put one face into two shells or leave a shell whose faces
+    do not meet (BRepCheck: NotConnected); shells that are manifold already pass through it unchanged, and the
+    T-joint's edge stays shared between them (step_writer keeps them in one surface model)."""
+    edge_index = IndexedShapeMap()
+    uses: list[list[tuple[int, Any]]] = []
+    for face in faces:
+        mine = []
+        explorer = TopExp_Explorer(face, TopAbs_EDGE)
+        while explorer.More():
+            edge = explorer.Current()
+            if edge.Orientation() in (TopAbs_FORWARD, TopAbs_REVERSED) and not BRep_Tool.Degenerated_s(TopoDS.Edge(edge)):
+                mine.append((edge_index.Add(edge), edge.Orientation()))
+            explorer.Next()
+        uses.append(mine)
+    faces_on: dict[int, list[int]] = {}
+    for i, mine in enumerate(uses):
+        for e, _ in mine:
+            faces_on.setdefault(e, []).append(i)
+    placed = [False] * len(faces)
+    shells: list[list[TopoDS_Shape]] = []
+    for start in range(len(faces)):
+        if placed[start]:
+            continue
+        used: dict[int, tuple[int, Any]] = {}  # edge -> (faces using it, the first one's orientation)
+        members: list[TopoDS_Shape] = []
+        queue = deque([start])
+        while queue:
+            i = queue.popleft()
+            if placed[i] or not _fits(uses[i], used):
+                continue
+            placed[i] = True
+            members.append(faces[i])
+            for e, orientation in uses[i]:
+                count, first = used.get(e, (0, orientation))
+                used[e] = (count + 1, first)
+            queue.extend(j for e, _ in uses[i] for j in faces_on[e] if not placed[j])
+        shells.append(members)
+    return shells
+
+
+def _fits(uses: list[tuple[int, Any]], used: dict[int, tuple[int, Any]]) -> bool:
+    """Whether a face using the edges `uses` (index, orientation) can join a shell whose edges are `used`."""
+    for e, orientation in uses:
+        count, first = used.get(e, (0, None))
+        if count >= 2 or (count == 1 and first == orientation):
+            return False
+    return True

@@ -25,6 +25,7 @@ from OCP.TopoDS import TopoDS_Shape
 from OCP.XCAFApp import XCAFApp_Application
 from OCP.XCAFDoc import XCAFDoc_ColorSurf, XCAFDoc_DocumentTool
 
+from .surface_model import merge_surface_models
 from ..constants import FIXED_TIME_STAMP, GLTF_INPUT_LENGTH_UNIT, PREVIEW_ANGULAR_DEFLECTION, PREVIEW_MIN_DEFLECTION, PREVIEW_RELATIVE_DEFLECTION
 from ..geom.topology import indexed_map
 from ..protocol.errors import BadArgs, OpError
@@ -58,6 +59,9 @@ def write_step(
     STEPCAFControl_Controller.Init_s()
     # Without this the writer drops the names of sub-shape (face) labels.
     Interface_Static.SetIVal_s("write.stepcaf.subshapes.name", 1)
+    # Shells that share edges (manifold shells meeting at T-joints) are written sharing them; the default mode
+    # writes each shell's edges anew.
+    Interface_Static.SetIVal_s("write.step.nonmanifold", 1)
     doc = TDocStd_Document(TCollection_ExtendedString("MDTV-XCAF"))
     XCAFApp_Application.GetApplication_s().InitDocument(doc)
     _attach_attributes(doc, shape, faces)
@@ -77,6 +81,7 @@ def write_step(
     status = writer.Write(path)
     if status != IFSelect_RetDone or not os.path.isfile(path):
         raise OpError(f"STEP writer returned {status.name} for {path}", "write_failed")
+    merge_surface_models(path)
     if preview:
         # After the STEP, so the triangulation made here cannot change what the STEP writer sees.
         _write_glb(preview, doc, shape)
