@@ -1,6 +1,6 @@
 """gmsh side of `midsurf mesh`: reads the mid-surface STEP with gmsh's own OCCT, meshes every surface with
 shells, and returns per surface its geometry (for Rust's matching) and elements. The small-edge clean-up is
-Rust's (mesh::clean): gmsh's own OCC healing (Geometry.OCCFixSmallEdges/Faces) was tried and dropped, as it
+Rust's (mesh::cleanup): gmsh's own OCC healing (Geometry.OCCFixSmallEdges/Faces) was tried and dropped, as it
 fails on real mid-surfaces ("Could not fix wire") and merges faces of different patches.
 
 Request (JSON on stdin):

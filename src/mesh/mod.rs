@@ -6,6 +6,7 @@
 //! centroid and area to the named faces of the mid-surface STEP; the clean-up of too-short edges; the ids; the
 //! decks. gmsh only meshes.
 
+pub mod cleanup;
 pub mod deck;
 pub mod mesher;
 pub mod quality;
@@ -18,9 +19,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::Error;
 use crate::exit::Exit;
+use cleanup::Cleanup;
 use deck::{Deck, Placement, Property};
 use quality::{Criteria, CriterionResult, Material, PartQuality};
-use shell::{Cleanup, Matching};
+use shell::Matching;
 
 /// Arguments of `midsurf mesh`.
 #[derive(Debug, clap::Args)]
@@ -220,7 +222,7 @@ pub fn run(args: &MeshCli) -> Result<Exit, Error> {
     let gmsh =
         mesher::gmsh_mesh(&mesher::MeshRequest { path: &args.midsurface, size: args.size, all_quads: args.all_quads })?;
     let (mut mesh, matching) = shell::assemble(&gmsh, &faces).map_err(|e| Error::input(&args.midsurface, e))?;
-    let cleanup = shell::clean(&mut mesh, args.clean_tol.unwrap_or(0.2 * args.size));
+    let cleanup = cleanup::clean(&mut mesh, args.clean_tol.unwrap_or(0.2 * args.size));
     if mesh.elements.is_empty() {
         return Err(Error::input(&args.midsurface, "the mesh has no elements"));
     }
