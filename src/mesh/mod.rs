@@ -7,6 +7,7 @@
 //! decks. gmsh only meshes.
 
 pub mod cleanup;
+pub mod collapse;
 pub mod deck;
 pub mod mesher;
 pub mod quality;
