@@ -5,6 +5,7 @@ use std::collections::BTreeSet;
 
 use serde::{Deserialize, Serialize};
 
+use super::meshing::UnmeshedFace;
 use super::quality::{ElementQuality, Material, Measured};
 use super::shell::ShellMesh;
 
@@ -59,10 +60,20 @@ pub fn check(
     size: f64,
     material: &Material,
     midsurface_free_length: Option<f64>,
+    unmeshed: &[UnmeshedFace],
 ) -> Vec<CriterionResult> {
     let q = &measured.per_element;
+    // Always checked: a face left out of the decks is a hole in the model, whatever the criteria file says.
+    let unmeshed_patches: BTreeSet<usize> = unmeshed.iter().filter_map(|u| u.patch).collect();
+    let mut out = vec![CriterionResult {
+        criterion: "unmeshed_faces",
+        limit: serde_json::json!(0),
+        value: unmeshed.len() as f64,
+        passed: unmeshed.is_empty(),
+        failing_elements: 0,
+        culprit_patches: unmeshed_patches.into_iter().take(20).collect(),
+    }];
     let t = &measured.total;
-    let mut out = Vec::new();
     let mut element_check = |name: &'static str, limit: f64, value: f64, fails: &dyn Fn(&ElementQuality) -> bool| {
         let failing: Vec<usize> = (0..q.len()).filter(|&i| fails(&q[i])).collect();
         let patches: BTreeSet<usize> = failing.iter().map(|&i| mesh.elements[i].patch).collect();

@@ -11,6 +11,7 @@ pub mod collapse;
 pub mod criteria;
 pub mod deck;
 pub mod mesher;
+pub mod meshing;
 pub mod properties;
 pub mod quality;
 pub mod run_report;
@@ -25,6 +26,7 @@ use crate::exit::Exit;
 use cleanup::Cleanup;
 use criteria::{Criteria, CriterionResult};
 use deck::{Deck, Placement, Property};
+use meshing::{Meshing, UnmeshedFace};
 use quality::{Material, PartQuality};
 use shell::Matching;
 
@@ -123,6 +125,10 @@ pub struct QualityReport {
     /// Plate wave speed of the material (mm/s).
     pub wave_speed: f64,
     pub matching: Matching,
+    /// Whether the whole model meshed at once, and the faces meshed one by one after it did not.
+    pub meshing: Meshing,
+    /// Faces no attempt could mesh: left out of the decks (the `unmeshed_faces` criterion fails).
+    pub unmeshed_faces: Vec<UnmeshedFace>,
     pub cleanup: Cleanup,
     pub nodes: usize,
     /// First and last id used (nodes, elements, properties share the start id).
@@ -166,12 +172,20 @@ pub fn run(args: &MeshCli) -> Result<Exit, Error> {
     let material = Material { young_mpa: args.young, density_t_mm3: args.density, poisson: args.poisson };
 
     let faces = mesher::named_faces(&args.midsurface)?;
-    let gmsh =
-        mesher::gmsh_mesh(&mesher::MeshRequest { path: &args.midsurface, size: args.size, all_quads: args.all_quads })?;
+    let gmsh = mesher::gmsh_mesh(&mesher::MeshRequest {
+        path: &args.midsurface,
+        size: args.size,
+        all_quads: args.all_quads,
+        time_floor_s: mesher::TIME_FLOOR_S,
+        time_per_element_s: mesher::TIME_PER_ELEMENT_S,
+        expected_elements: estimate,
+    })?;
     let (mut mesh, matching) = shell::assemble(&gmsh, &faces).map_err(|e| Error::input(&args.midsurface, e))?;
+    let (meshing, unmeshed_faces) = meshing::account(&gmsh, &faces, &matching);
     let cleanup = cleanup::clean(&mut mesh, args.clean_tol.unwrap_or(0.2 * args.size));
     if mesh.elements.is_empty() {
-        return Err(Error::input(&args.midsurface, "the mesh has no elements"));
+        let why = gmsh.unmeshed.first().map(|u| format!(" (gmsh: {})", u.why)).unwrap_or_default();
+        return Err(Error::input(&args.midsurface, format!("the mesh has no elements{why}")));
     }
     if let Some(e) = mesh.elements.iter().find(|e| !run.part_of.contains_key(&e.patch)) {
         return Err(Error::input(
@@ -183,7 +197,7 @@ pub fn run(args: &MeshCli) -> Result<Exit, Error> {
         properties::properties(&mesh.elements, &run.part_of, &run.thickness_of, args.sections, args.start_id);
 
     let measured = quality::measure(&mesh, &run.part_of, &run.thickness_of, &run.solid_volume, &material);
-    let results = criteria::check(&criteria, &mesh, &measured, args.size, &material, run.free_length);
+    let results = criteria::check(&criteria, &mesh, &measured, args.size, &material, run.free_length, &unmeshed_faces);
     let passed = results.iter().all(|r| r.passed);
 
     let name = args.midsurface.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
@@ -218,6 +232,8 @@ pub fn run(args: &MeshCli) -> Result<Exit, Error> {
         material,
         wave_speed: material.wave_speed(),
         matching,
+        meshing,
+        unmeshed_faces,
         cleanup,
         nodes: mesh.nodes.len(),
         ids: [args.start_id, deck.last_id()],

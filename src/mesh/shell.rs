@@ -1,6 +1,8 @@
 //! The shell mesh: gmsh's elements with the patch of each gmsh surface (matched to midsurf's named faces by
 //! geometry), oriented as the patch.
 
+use std::collections::BTreeMap;
+
 use glam::DVec3;
 use serde::Serialize;
 
@@ -36,6 +38,11 @@ pub struct Matching {
     pub faces_unmatched: Vec<usize>,
     /// Surfaces whose elements were turned over to follow the face's normal.
     pub flipped: usize,
+    /// gmsh surfaces whose face has no "patch <id> t=<thickness>" name: their elements are left out.
+    pub without_patch: Vec<i64>,
+    /// The named face each gmsh surface (by tag) took.
+    #[serde(skip)]
+    pub face_of_surface: BTreeMap<i64, usize>,
 }
 
 /// Same face read by two kernels: centroids within this share of the part's diagonal...
@@ -64,7 +71,7 @@ pub fn centroid(nodes: &[DVec3], element: &[usize]) -> DVec3 {
 }
 
 /// Builds the shell mesh from gmsh's reply: each surface takes the patch of its named face and that face's
-/// orientation. Errors when a face has no patch name.
+/// orientation; a surface whose face has no patch name is left out (`Matching::without_patch`).
 pub fn assemble(gmsh: &GmshMesh, faces: &[NamedFace]) -> Result<(ShellMesh, Matching), String> {
     let nodes: Vec<DVec3> = gmsh.nodes.iter().map(|p| DVec3::from_array(*p)).collect();
     let (lo, hi) =
@@ -96,6 +103,7 @@ pub fn assemble(gmsh: &GmshMesh, faces: &[NamedFace]) -> Result<(ShellMesh, Matc
         };
         used[face] = true;
         face_of.push(face);
+        matching.face_of_surface.insert(s.tag, face);
     }
     matching.faces_unmatched = (0..faces.len()).filter(|&i| !used[i]).collect();
 
@@ -106,8 +114,11 @@ pub fn assemble(gmsh: &GmshMesh, faces: &[NamedFace]) -> Result<(ShellMesh, Matc
         };
         let face = face_of[k];
         let named = &faces[face];
-        let patch = patch_of_name(&named.name)
-            .ok_or_else(|| format!("face {face} is named {:?}, not \"patch <id> t=<thickness>\"", named.name))?;
+        let Some(patch) = patch_of_name(&named.name) else {
+            // No patch, so no thickness: left out of the decks and named with the unmeshed faces.
+            matching.without_patch.push(block.surface);
+            continue;
+        };
         let mut mine: Vec<Vec<usize>> =
             block.quads.iter().map(|q| q.to_vec()).chain(block.trias.iter().map(|t| t.to_vec())).collect();
         // gmsh orients a surface's elements consistently, but by its own parametrisation: compare the element
