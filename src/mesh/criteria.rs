@@ -50,6 +50,9 @@ pub struct CriterionResult {
     /// Elements failing it, and their patches (first 20 by id): where to look.
     pub failing_elements: usize,
     pub culprit_patches: Vec<usize>,
+    /// The failing elements' indices (for the preview).
+    #[serde(skip)]
+    pub failing: Vec<usize>,
 }
 
 /// Checks every criterion given on the total over all parts; each failing one names its worst patches.
@@ -72,6 +75,7 @@ pub fn check(
         passed: unmeshed.is_empty(),
         failing_elements: 0,
         culprit_patches: unmeshed_patches.into_iter().take(20).collect(),
+        failing: vec![],
     }];
     let t = &measured.total;
     let mut element_check = |name: &'static str, limit: f64, value: f64, fails: &dyn Fn(&ElementQuality) -> bool| {
@@ -84,6 +88,7 @@ pub fn check(
             passed: failing.is_empty(),
             failing_elements: failing.len(),
             culprit_patches: patches.into_iter().take(20).collect(),
+            failing,
         });
     };
     if let Some(l) = criteria.min_edge {
@@ -117,6 +122,7 @@ pub fn check(
             passed,
             failing_elements: 0,
             culprit_patches: vec![],
+            failing: vec![],
         });
     };
     if let Some(l) = criteria.max_tria_share {

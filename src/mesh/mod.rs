@@ -12,6 +12,7 @@ pub mod criteria;
 pub mod deck;
 pub mod mesher;
 pub mod meshing;
+pub mod preview;
 pub mod properties;
 pub mod quality;
 pub mod run_report;
@@ -27,6 +28,7 @@ use cleanup::Cleanup;
 use criteria::{Criteria, CriterionResult};
 use deck::{Deck, Placement, Property};
 use meshing::{Meshing, UnmeshedFace};
+use preview::Coloring;
 use quality::{Material, PartQuality};
 use shell::Matching;
 
@@ -76,6 +78,13 @@ pub struct MeshCli {
     /// Poisson's ratio [default: steel].
     #[arg(long, default_value_t = 0.3)]
     pub poisson: f64,
+    /// Also write a binary glTF (.glb) of the mesh here, for any glTF viewer (docs/mesh.md).
+    #[arg(long)]
+    pub preview: Option<PathBuf>,
+    /// What the preview's colours show: each element's thickness band (the colours of the run's STEP), or
+    /// whether it fails a quality criterion (red) or not (grey).
+    #[arg(long, value_enum, default_value_t = Coloring::Thickness, requires = "preview")]
+    pub color: Coloring,
     /// Refuse to mesh when the mid-surface's area over size² exceeds this many elements (a part measured in
     /// metres meshed at 2 mm would run for hours and fill the disk).
     #[arg(long, default_value_t = 2_000_000)]
@@ -141,6 +150,7 @@ pub struct QualityReport {
     pub criteria: Vec<CriterionResult>,
     pub passed: bool,
     pub decks: Vec<String>,
+    pub preview: Option<String>,
 }
 
 pub fn run(args: &MeshCli) -> Result<Exit, Error> {
@@ -244,11 +254,39 @@ pub fn run(args: &MeshCli) -> Result<Exit, Error> {
         criteria: results,
         passed,
         decks: outputs.iter().map(|(p, _)| p.display().to_string()).collect(),
+        preview: args.preview.as_ref().map(|p| p.display().to_string()),
     };
+    if let Some(path) = &args.preview {
+        let colors = preview_colors(args.color, &mesh, &run, &quality.criteria);
+        outputs.push((path.clone(), preview::glb(&mesh, &colors)));
+    }
     let json = serde_json::to_string_pretty(&quality).expect("quality reports always serialise") + "\n";
     outputs.push((with_suffix(&args.output, "quality.json"), json.into_bytes()));
     write_all(&outputs)?;
     Ok(if passed { Exit::Clean } else { Exit::Warnings })
+}
+
+/// Each element's preview colour: its thickness band's, or red when it fails a criterion (grey when not).
+fn preview_colors(
+    coloring: Coloring,
+    mesh: &shell::ShellMesh,
+    run: &run_report::RunFacts,
+    results: &[CriterionResult],
+) -> Vec<[f64; 3]> {
+    match coloring {
+        Coloring::Thickness => mesh
+            .elements
+            .iter()
+            .map(|e| crate::output::report::band_color(&run.legend, run.thickness_of[&e.patch]))
+            .collect(),
+        Coloring::Quality => {
+            let mut failing = vec![false; mesh.elements.len()];
+            for i in results.iter().flat_map(|r| &r.failing) {
+                failing[*i] = true;
+            }
+            failing.into_iter().map(|f| if f { preview::FAILING } else { preview::PASSING }).collect()
+        }
+    }
 }
 
 fn with_suffix(base: &Path, suffix: &str) -> PathBuf {

@@ -1,5 +1,6 @@
 //! What meshing takes from `midsurf run`'s JSON report: each patch's solid and deck thickness, each solid's
-//! volume, the position of the mid-surface in the wall, its area and free length.
+//! volume, the position of the mid-surface in the wall, its area and free length, and the thickness legend
+//! (the STEP's colours).
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -8,6 +9,7 @@ use serde::Deserialize;
 
 use super::deck::Placement;
 use crate::error::Error;
+use crate::output::report::{legend, LegendEntry};
 
 /// The run's facts, keyed by patch id and solid id (both 1-based, the report's).
 #[derive(Debug, Clone)]
@@ -21,6 +23,7 @@ pub struct RunFacts {
     pub area: f64,
     /// Rim + open edges of the mid-surface, when the run could stitch it.
     pub free_length: Option<f64>,
+    pub legend: Vec<LegendEntry>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -29,6 +32,14 @@ struct RunReport {
     solids: Vec<RunSolid>,
     patches: Vec<RunPatch>,
     result: RunResult,
+    #[serde(default)]
+    thickness_legend: Vec<RunLegendEntry>,
+}
+
+#[derive(Debug, Deserialize)]
+struct RunLegendEntry {
+    thickness: f64,
+    color: [f64; 3],
 }
 
 #[derive(Debug, Deserialize)]
@@ -85,6 +96,12 @@ pub fn read(path: &Path) -> Result<RunFacts, Error> {
     let part_of = run.patches.iter().map(|p| (p.id, p.solid)).collect();
     let thickness_of: BTreeMap<usize, f64> =
         run.patches.iter().map(|p| (p.id, deck_thickness(p.thickness.mean))).collect();
+    // The STEP's colours: the report's legend, or (a report without one) the same legend made again.
+    let legend = if run.thickness_legend.is_empty() {
+        legend(&run.patches.iter().map(|p| p.thickness.mean).collect::<Vec<f64>>())
+    } else {
+        run.thickness_legend.iter().map(|e| LegendEntry { thickness: e.thickness, color: e.color }).collect()
+    };
     Ok(RunFacts {
         placement,
         part_of,
@@ -92,5 +109,6 @@ pub fn read(path: &Path) -> Result<RunFacts, Error> {
         solid_volume: run.solids.iter().map(|s| (s.solid, s.volume)).collect(),
         area: run.result.area,
         free_length: run.result.free_edges.as_ref().map(|f| f.rim_length + f.open_length),
+        legend,
     })
 }
