@@ -124,10 +124,10 @@ pub fn linear(c: f64) -> f64 {
 /// The GLB container: header, JSON chunk padded with spaces, binary chunk padded with zeros (to 4 bytes).
 fn container(json: &[u8], mut bin: Vec<u8>) -> Vec<u8> {
     let mut json = json.to_vec();
-    while json.len() % 4 != 0 {
+    while !json.len().is_multiple_of(4) {
         json.push(b' ');
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + json.len() + 8 + bin.len();
