@@ -88,8 +88,8 @@ def _mesh(request: dict) -> dict:
     if whole.failure:
         why, done, todo, errors = f"failed: {whole.failure}", [], [s["tag"] for s in surfaces], []
     else:
-        empty = whole.value["empty"]
-        why, done, todo, errors = f"left {len(empty)} surface(s) empty", [whole.value["mesh"]], empty, whole.value["errors"]
+        todo, errors = whole.value["empty"], whole.value["errors"]
+        why, done = f"left {len(todo)} surface(s) empty", [whole.value["mesh"]]
     merged = per_surface.mesh_each(surfaces, todo, done, limits, fault)
     return {**reply, **merged, "whole_model": why, "gmsh_errors": errors}
 

@@ -95,12 +95,14 @@ pub fn glb(mesh: &ShellMesh, colors: &[[f64; 3]]) -> Vec<u8> {
         ]}],
         "materials": [
             {"name": "elements", "doubleSided": true,
-             "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.8}},
+             "pbrMetallicRoughness":
+                {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.8}},
             {"name": "outlines",
              "pbrMetallicRoughness": {"baseColorFactor": OUTLINE, "metallicFactor": 0.0, "roughnessFactor": 1.0}}
         ],
         "accessors": [
-            {"bufferView": position_view, "componentType": FLOAT, "count": vertices, "type": "VEC3", "min": lo, "max": hi},
+            {"bufferView": position_view, "componentType": FLOAT, "count": vertices, "type": "VEC3",
+             "min": lo, "max": hi},
             {"bufferView": normal_view, "componentType": FLOAT, "count": vertices, "type": "VEC3"},
             {"bufferView": color_view, "componentType": FLOAT, "count": vertices, "type": "VEC3"},
             {"bufferView": triangle_view, "componentType": UNSIGNED_INT, "count": triangles.len(), "type": "SCALAR"},
