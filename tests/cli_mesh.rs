@@ -56,6 +56,7 @@ fn decks_are_byte_identical_on_a_rerun_and_ids_start_where_asked() {
     assert!(elements > 100, "{elements} elements on a 100 x 60 plate with a rib at 5 mm");
     assert_eq!(q["total"]["t_edges"]["length"].as_f64().unwrap().round(), 60.0, "the rib's joint conforms");
     assert_eq!(q["parts"].as_array().unwrap().len(), 1);
+    assert_eq!(q["meshing"]["address_layout"], "fixed", "gmsh without address randomisation: reruns repeat");
 
     // A second part's deck starts at 1000001: its ids never meet the first one's.
     let o = mesh(&mid, &rep, &dir.join("c"), &["--size", "5", "--start-id", "1000001", "--format", "k"]);

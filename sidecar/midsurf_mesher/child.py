@@ -48,7 +48,7 @@ def in_child(attempt: Callable[[], Any], time_limit_s: float) -> Outcome:
             if left <= 0 or not select.select([read], [], [], left)[0]:
                 os.kill(pid, signal.SIGKILL)
                 os.waitpid(pid, 0)
-                return Outcome(failure=f"timed out after {time_limit_s:g} s")
+                return Outcome(failure=f"timed out after {time_limit_s:.3g} s")
             chunk = os.read(read, 1 << 20)
             if not chunk:
                 break

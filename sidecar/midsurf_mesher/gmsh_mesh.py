@@ -16,7 +16,8 @@ Reply:
    "nodes": [[x, y, z], ...], "node_dims": [0|1|2, ...],      // 0-based node index; dim of its CAD entity
    "elements": [{"surface": s, "quads": [[a,b,c,d], ...], "trias": [[a,b,c], ...]}, ...],
    "whole_model": "meshed" | why not, "retried": [{"surface": s, "how": ...}],
-   "unmeshed": [{"surface": s, "why": ...}], "gmsh_errors": [first errors gmsh logged]}
+   "unmeshed": [{"surface": s, "why": ...}], "gmsh_errors": [first errors gmsh logged],
+   "address_layout": "fixed" | "random"}   // __main__'s: "fixed" makes the mesh repeatable
 Everything is single-threaded so that the same request gives the same mesh.
 """
 

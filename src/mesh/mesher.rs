@@ -56,6 +56,9 @@ pub struct GmshMesh {
     pub unmeshed: Vec<UnmeshedSurface>,
     /// The first errors gmsh logged.
     pub gmsh_errors: Vec<String>,
+    /// "fixed" when gmsh ran without address space randomisation (the same request then gives the same mesh:
+    /// gmsh orders some entities by address), else "random".
+    pub address_layout: String,
 }
 
 /// A surface meshed on its own after the whole model failed: `how` names the attempt that worked.

@@ -14,6 +14,9 @@ pub struct Meshing {
     pub retried: Vec<RetriedFace>,
     /// The first errors gmsh logged.
     pub gmsh_errors: Vec<String>,
+    /// "fixed": gmsh ran without address space randomisation, so a rerun gives the same mesh; "random": it
+    /// could not (personality(2) refused), and a few models mesh one of two ways.
+    pub address_layout: String,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -60,6 +63,11 @@ pub fn account(gmsh: &GmshMesh, faces: &[NamedFace], matching: &Matching) -> (Me
         })
     }));
     unmeshed.sort_by_key(|u| u.face);
-    let meshing = Meshing { whole_model: gmsh.whole_model.clone(), retried, gmsh_errors: gmsh.gmsh_errors.clone() };
+    let meshing = Meshing {
+        whole_model: gmsh.whole_model.clone(),
+        retried,
+        gmsh_errors: gmsh.gmsh_errors.clone(),
+        address_layout: gmsh.address_layout.clone(),
+    };
     (meshing, unmeshed)
 }
