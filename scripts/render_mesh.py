@@ -1,7 +1,9 @@
-"""Renders a `midsurf mesh` Abaqus deck (.inp) to a PNG: shells coloured by thickness, edges drawn, for the docs.
+"""Renders a `midsurf mesh` Abaqus deck (.inp) or preview (.glb) to a PNG: shells coloured by thickness (the
+deck) or in the preview's colours, edges drawn, for the docs.
 
-  .venv/bin/python scripts/render_mesh.py BASE.inp OUT.png [--elev 30 --azim -60]
-Reads the deck with meshio (nodes, elements, element sets) and the *SHELL SECTION thicknesses itself."""
+  .venv/bin/python scripts/render_mesh.py BASE.inp|P.glb OUT.png [--elev 30 --azim -60]
+Reads the deck with meshio (nodes, elements, element sets) and the *SHELL SECTION thicknesses itself; the
+preview with pygltflib (the triangles with their vertex colours, the outlines)."""
 
 import argparse
 import re
@@ -23,6 +25,9 @@ def main() -> None:
     ap.add_argument("--elev", type=float, default=30)
     ap.add_argument("--azim", type=float, default=-60)
     a = ap.parse_args()
+    if a.deck.endswith(".glb"):
+        render_glb(a)
+        return
     mesh = meshio.read(a.deck, file_format="abaqus")
     text = Path(a.deck).read_text()
     thickness = {
@@ -44,19 +49,51 @@ def main() -> None:
     fig = plt.figure(figsize=(8, 6), dpi=110)
     ax = fig.add_subplot(projection="3d")
     ax.add_collection3d(Poly3DCollection(polys, facecolors=colours, edgecolors="k", linewidths=0.15))
-    pts = mesh.points
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    centre, half = (lo + hi) / 2, (hi - lo).max() / 2
-    for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
-        setter(c - half, c + half)
-    ax.set_box_aspect((1, 1, 1))
-    ax.view_init(a.elev, a.azim)
-    ax.set_axis_off()
+    frame(ax, mesh.points, a)
     handles = [plt.Rectangle((0, 0), 1, 1, color=cmap(i)) for i in range(len(bands))]
     ax.legend(handles, [f"t = {b:g} mm" for b in bands], loc="upper left", fontsize=8)
     ax.set_title(f"{Path(a.deck).name}: {len(polys)} shells", fontsize=9)
     fig.tight_layout()
-    fig.savefig(a.png)
+    fig.savefig(a.png, bbox_inches="tight")
+
+
+def frame(ax, pts, a) -> None:
+    """Equal scale on the three axes, the box as long as the part (a long bracket fills the picture)."""
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    for setter, l, h in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), lo, hi):
+        setter(l, h)
+    ax.set_box_aspect(np.maximum(hi - lo, 1e-3 * (hi - lo).max()))
+    ax.view_init(a.elev, a.azim)
+    ax.set_axis_off()
+
+
+def render_glb(a) -> None:
+    import pygltflib
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    gltf = pygltflib.GLTF2().load(a.deck)
+    blob = gltf.binary_blob()
+
+    def read(index, dtype, width):
+        acc = gltf.accessors[index]
+        view = gltf.bufferViews[acc.bufferView]
+        data = np.frombuffer(blob[view.byteOffset : view.byteOffset + view.byteLength], dtype=dtype)
+        return data.reshape(-1, width) if width > 1 else data
+
+    faces, outlines = gltf.meshes[0].primitives
+    points = read(faces.attributes.POSITION, np.float32, 3)  # the mesh's mm: the node's scale is not applied
+    linear = read(faces.attributes.COLOR_0, np.float32, 3)
+    srgb = np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * linear ** (1 / 2.4) - 0.055).clip(0, 1)
+    triangles = read(faces.indices, np.uint32, 3)
+    segments = read(outlines.indices, np.uint32, 2)
+    fig = plt.figure(figsize=(8, 6), dpi=110)
+    ax = fig.add_subplot(projection="3d")
+    ax.add_collection3d(Poly3DCollection(points[triangles], facecolors=srgb[triangles[:, 0]], linewidths=0))
+    ax.add_collection3d(Line3DCollection(points[segments], colors="k", linewidths=0.15))
+    frame(ax, points, a)
+    ax.set_title(f"{Path(a.deck).name}: {len(points)} vertices, {len(triangles)} triangles", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(a.png, bbox_inches="tight")
 
 
 if __name__ == "__main__":

@@ -56,6 +56,7 @@ fn decks_are_byte_identical_on_a_rerun_and_ids_start_where_asked() {
     assert!(elements > 100, "{elements} elements on a 100 x 60 plate with a rib at 5 mm");
     assert_eq!(q["total"]["t_edges"]["length"].as_f64().unwrap().round(), 60.0, "the rib's joint conforms");
     assert_eq!(q["parts"].as_array().unwrap().len(), 1);
+    assert_eq!(q["meshing"]["address_layout"], "fixed", "gmsh without address randomisation: reruns repeat");
 
     // A second part's deck starts at 1000001: its ids never meet the first one's.
     let o = mesh(&mid, &rep, &dir.join("c"), &["--size", "5", "--start-id", "1000001", "--format", "k"]);
@@ -106,4 +107,53 @@ fn a_report_that_is_not_midsurfs_stops_with_one_line_and_writes_nothing() {
     let o = mesh(&mid, &dir.join("mid.json"), &dir.join("m"), &["--criteria", criteria.to_str().unwrap()]);
     assert_eq!(o.code, 2);
     assert!(o.stderr.contains("c.json") && o.stderr.contains("min_edgee"), "{}", o.stderr);
+}
+
+/// A face gmsh cannot mesh (MIDSURF_TEST_MESHER makes gmsh surface 1 fail or hang in every attempt): the other
+/// face is meshed on its own, the decks are written without the lost one, and the quality report names it
+/// (patch, area) with a failed criterion: exit 1, not 2.
+fn a_lost_face_is_named_and_the_decks_are_still_written(fault: &str, whole_model: &str) {
+    let dir = scratch(&format!("mesh-lost-{}", fault.replace(':', "-")));
+    let (mid, rep) = t_rib(&dir);
+    let mut cmd = midsurf();
+    cmd.env("MIDSURF_TEST_MESHER", fault).args([
+        "mesh",
+        mid.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+        "-o",
+        dir.join("m").to_str().unwrap(),
+        "--size",
+        "5",
+    ]);
+    let o = outcome(&mut cmd);
+    assert_eq!(o.code, 1, "{}", o.stderr);
+    for ext in ["k", "bdf", "inp"] {
+        assert!(dir.join(format!("m.{ext}")).is_file(), "m.{ext} written");
+    }
+    let q = read_json(&dir.join("m.quality.json"));
+    assert!(q["meshing"]["whole_model"].as_str().unwrap().starts_with(whole_model), "{}", q["meshing"]);
+    // gmsh's surface 1 is t_rib's rib (patch 2, 60 x 21 mm); the plate's two faces (either side of the rib)
+    // are meshed one by one.
+    assert_eq!(q["meshing"]["retried"].as_array().unwrap().len(), 2, "{}", q["meshing"]);
+    let lost = q["unmeshed_faces"].as_array().unwrap();
+    assert_eq!(lost.len(), 1, "{lost:?}");
+    assert_eq!(lost[0]["patch"], 2);
+    assert!((lost[0]["area"].as_f64().unwrap() - 1260.0).abs() < 1e-6, "{lost:?}");
+    let unmeshed = q["criteria"].as_array().unwrap().iter().find(|c| c["criterion"] == "unmeshed_faces").unwrap();
+    assert_eq!(unmeshed["passed"], false);
+    assert_eq!(unmeshed["culprit_patches"], serde_json::json!([2]));
+    assert_eq!(q["parts"][0]["t_edges"]["count"], 0, "the plate alone: no T-joint");
+    // The plate's two faces still share their nodes along the rib's line: no free edge there, only the rim.
+    assert!((q["parts"][0]["free_edges"]["length"].as_f64().unwrap() - 320.0).abs() < 1e-6, "{}", q["parts"][0]);
+}
+
+#[test]
+fn a_face_gmsh_fails_on_is_left_out_and_named() {
+    a_lost_face_is_named_and_the_decks_are_still_written("fail:1", "failed: injected failure on surface 1");
+}
+
+#[test]
+fn a_face_gmsh_hangs_on_is_given_up_after_its_time_limit() {
+    a_lost_face_is_named_and_the_decks_are_still_written("hang:1", "failed: timed out after 1 s");
 }

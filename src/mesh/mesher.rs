@@ -50,6 +50,29 @@ pub struct GmshMesh {
     /// Dimension of the CAD entity each node lies on: 0 a vertex, 1 a curve, 2 a surface's inside.
     pub node_dims: Vec<u8>,
     pub elements: Vec<GmshElements>,
+    /// "meshed", or why the whole model did not mesh at once (then the surfaces were meshed one by one).
+    pub whole_model: String,
+    pub retried: Vec<RetriedSurface>,
+    pub unmeshed: Vec<UnmeshedSurface>,
+    /// The first errors gmsh logged.
+    pub gmsh_errors: Vec<String>,
+    /// "fixed" when gmsh ran without address space randomisation (the same request then gives the same mesh:
+    /// gmsh orders some entities by address), else "random".
+    pub address_layout: String,
+}
+
+/// A surface meshed on its own after the whole model failed: `how` names the attempt that worked.
+#[derive(Debug, Clone, Deserialize)]
+pub struct RetriedSurface {
+    pub surface: i64,
+    pub how: String,
+}
+
+/// A surface no attempt could mesh, and the last attempt's failure.
+#[derive(Debug, Clone, Deserialize)]
+pub struct UnmeshedSurface {
+    pub surface: i64,
+    pub why: String,
 }
 
 #[derive(Debug, Serialize)]
@@ -57,7 +80,18 @@ pub struct MeshRequest<'a> {
     pub path: &'a Path,
     pub size: f64,
     pub all_quads: bool,
+    /// An attempt (the whole model, or one surface) counts as hung after `time_floor_s` plus
+    /// `time_per_element_s` per expected element.
+    pub time_floor_s: f64,
+    pub time_per_element_s: f64,
+    pub expected_elements: f64,
 }
+
+/// A gmsh attempt gets this long at least: a small surface meshes in milliseconds, a hung one never ends.
+pub const TIME_FLOOR_S: f64 = 10.0;
+/// And this long per expected element: gmsh meshed the corpus at about 0.3 ms per element (133712 elements
+/// in 42 s), so a surface or model gets 6 times that before it is given up.
+pub const TIME_PER_ELEMENT_S: f64 = 2e-3;
 
 /// The named faces of `step`, in the file's face order.
 pub fn named_faces(step: &Path) -> Result<Vec<NamedFace>, Error> {

@@ -6,21 +6,31 @@
 //! centroid and area to the named faces of the mid-surface STEP; the clean-up of too-short edges; the ids; the
 //! decks. gmsh only meshes.
 
+pub mod cleanup;
+pub mod collapse;
+pub mod criteria;
 pub mod deck;
 pub mod mesher;
+pub mod meshing;
+pub mod preview;
+pub mod properties;
 pub mod quality;
+pub mod run_report;
 pub mod shell;
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use crate::error::Error;
 use crate::exit::Exit;
+use cleanup::Cleanup;
+use criteria::{Criteria, CriterionResult};
 use deck::{Deck, Placement, Property};
-use quality::{Criteria, CriterionResult, Material, PartQuality};
-use shell::{Cleanup, Matching};
+use meshing::{Meshing, UnmeshedFace};
+use preview::Coloring;
+use quality::{Material, PartQuality};
+use shell::Matching;
 
 /// Arguments of `midsurf mesh`.
 #[derive(Debug, clap::Args)]
@@ -68,6 +78,13 @@ pub struct MeshCli {
     /// Poisson's ratio [default: steel].
     #[arg(long, default_value_t = 0.3)]
     pub poisson: f64,
+    /// Also write a binary glTF (.glb) of the mesh here, for any glTF viewer (docs/mesh.md).
+    #[arg(long)]
+    pub preview: Option<PathBuf>,
+    /// What the preview's colours show: each element's thickness band (the colours of the run's STEP), or
+    /// whether it fails a quality criterion (red) or not (grey).
+    #[arg(long, value_enum, default_value_t = Coloring::Thickness, requires = "preview")]
+    pub color: Coloring,
     /// Refuse to mesh when the mid-surface's area over size² exceeds this many elements (a part measured in
     /// metres meshed at 2 mm would run for hours and fill the disk).
     #[arg(long, default_value_t = 2_000_000)]
@@ -103,50 +120,6 @@ fn non_negative(s: &str) -> Result<f64, String> {
     }
 }
 
-/// The fields of the run's report that meshing needs.
-#[derive(Debug, Deserialize)]
-struct RunReport {
-    parameters: RunParameters,
-    solids: Vec<RunSolid>,
-    patches: Vec<RunPatch>,
-    result: RunResult,
-}
-
-#[derive(Debug, Deserialize)]
-struct RunParameters {
-    position: String,
-}
-
-#[derive(Debug, Deserialize)]
-struct RunSolid {
-    solid: usize,
-    volume: f64,
-}
-
-#[derive(Debug, Deserialize)]
-struct RunPatch {
-    id: usize,
-    solid: usize,
-    thickness: RunThickness,
-}
-
-#[derive(Debug, Deserialize)]
-struct RunThickness {
-    mean: f64,
-}
-
-#[derive(Debug, Deserialize)]
-struct RunResult {
-    area: f64,
-    free_edges: Option<RunFreeEdges>,
-}
-
-#[derive(Debug, Deserialize)]
-struct RunFreeEdges {
-    rim_length: f64,
-    open_length: f64,
-}
-
 /// The quality report (BASE.quality.json).
 #[derive(Debug, Serialize)]
 pub struct QualityReport {
@@ -161,6 +134,10 @@ pub struct QualityReport {
     /// Plate wave speed of the material (mm/s).
     pub wave_speed: f64,
     pub matching: Matching,
+    /// Whether the whole model meshed at once, and the faces meshed one by one after it did not.
+    pub meshing: Meshing,
+    /// Faces no attempt could mesh: left out of the decks (the `unmeshed_faces` criterion fails).
+    pub unmeshed_faces: Vec<UnmeshedFace>,
     pub cleanup: Cleanup,
     pub nodes: usize,
     /// First and last id used (nodes, elements, properties share the start id).
@@ -173,23 +150,11 @@ pub struct QualityReport {
     pub criteria: Vec<CriterionResult>,
     pub passed: bool,
     pub decks: Vec<String>,
-}
-
-/// Thickness as written to the decks and names: to 0.001 mm.
-fn deck_thickness(t: f64) -> f64 {
-    crate::output::round(t, 3)
+    pub preview: Option<String>,
 }
 
 pub fn run(args: &MeshCli) -> Result<Exit, Error> {
-    let report_text = std::fs::read_to_string(&args.report).map_err(|e| Error::input(&args.report, e.to_string()))?;
-    let run: RunReport = serde_json::from_str(&report_text)
-        .map_err(|e| Error::input(&args.report, format!("not a midsurf run report: {e}")))?;
-    let placement = match run.parameters.position.as_str() {
-        "mid" => Placement::Mid,
-        "top" => Placement::Top,
-        "bottom" => Placement::Bottom,
-        other => return Err(Error::input(&args.report, format!("unknown position {other:?}"))),
-    };
+    let run = run_report::read(&args.report)?;
     if !(0.0..0.5).contains(&args.poisson) {
         return Err(Error::input(&args.midsurface, format!("--poisson {} is not in [0, 0.5)", args.poisson)));
     }
@@ -200,86 +165,49 @@ pub fn run(args: &MeshCli) -> Result<Exit, Error> {
             serde_json::from_str(&text).map_err(|e| Error::input(path, format!("not a criteria file: {e}")))?
         }
     };
-    let estimate = run.result.area / (args.size * args.size);
+    let estimate = run.area / (args.size * args.size);
     if estimate > args.max_elements as f64 {
         return Err(Error::input(
             &args.midsurface,
             format!(
                 "{:.3e} mm2 at --size {} makes about {:.1e} elements, over --max-elements {}: give a larger --size (>= {:.3})",
-                run.result.area,
+                run.area,
                 args.size,
                 estimate,
                 args.max_elements,
-                (run.result.area / args.max_elements as f64).sqrt()
+                (run.area / args.max_elements as f64).sqrt()
             ),
         ));
     }
     let material = Material { young_mpa: args.young, density_t_mm3: args.density, poisson: args.poisson };
 
     let faces = mesher::named_faces(&args.midsurface)?;
-    let gmsh =
-        mesher::gmsh_mesh(&mesher::MeshRequest { path: &args.midsurface, size: args.size, all_quads: args.all_quads })?;
+    let gmsh = mesher::gmsh_mesh(&mesher::MeshRequest {
+        path: &args.midsurface,
+        size: args.size,
+        all_quads: args.all_quads,
+        time_floor_s: mesher::TIME_FLOOR_S,
+        time_per_element_s: mesher::TIME_PER_ELEMENT_S,
+        expected_elements: estimate,
+    })?;
     let (mut mesh, matching) = shell::assemble(&gmsh, &faces).map_err(|e| Error::input(&args.midsurface, e))?;
-    let cleanup = shell::clean(&mut mesh, args.clean_tol.unwrap_or(0.2 * args.size));
+    let (meshing, unmeshed_faces) = meshing::account(&gmsh, &faces, &matching);
+    let cleanup = cleanup::clean(&mut mesh, args.clean_tol.unwrap_or(0.2 * args.size));
     if mesh.elements.is_empty() {
-        return Err(Error::input(&args.midsurface, "the mesh has no elements"));
+        let why = gmsh.unmeshed.first().map(|u| format!(" (gmsh: {})", u.why)).unwrap_or_default();
+        return Err(Error::input(&args.midsurface, format!("the mesh has no elements{why}")));
     }
-
-    let mut part_of = BTreeMap::new();
-    let mut thickness_of = BTreeMap::new();
-    for p in &run.patches {
-        part_of.insert(p.id, p.solid);
-        thickness_of.insert(p.id, deck_thickness(p.thickness.mean));
-    }
-    if let Some(e) = mesh.elements.iter().find(|e| !part_of.contains_key(&e.patch)) {
+    if let Some(e) = mesh.elements.iter().find(|e| !run.part_of.contains_key(&e.patch)) {
         return Err(Error::input(
             &args.report,
             format!("has no patch {} (face {} of the mid-surface)", e.patch, e.face),
         ));
     }
-    // Properties: one per (solid, section), sorted, so ids do not depend on gmsh's surface order.
-    let section_key = |patch: usize| -> (usize, i64, usize) {
-        let t = thickness_of[&patch];
-        match args.sections {
-            Sections::Band => (part_of[&patch], (t * 1000.0).round() as i64, 0),
-            Sections::Patch => (part_of[&patch], 0, patch),
-        }
-    };
-    let mut keys: Vec<(usize, i64, usize)> = mesh.elements.iter().map(|e| section_key(e.patch)).collect();
-    keys.sort();
-    keys.dedup();
-    let mut properties: Vec<Property> = keys
-        .iter()
-        .enumerate()
-        .map(|(i, k)| Property {
-            id: args.start_id + i as u64,
-            part: k.0,
-            thickness: 0.0,
-            patches: vec![],
-            label: String::new(),
-        })
-        .collect();
-    let property_of: Vec<usize> =
-        mesh.elements.iter().map(|e| keys.binary_search(&section_key(e.patch)).expect("every key listed")).collect();
-    for (e, &k) in mesh.elements.iter().zip(&property_of) {
-        let p = &mut properties[k];
-        if !p.patches.contains(&e.patch) {
-            p.patches.push(e.patch);
-        }
-        p.thickness = thickness_of[&e.patch];
-    }
-    for p in &mut properties {
-        p.patches.sort_unstable();
-        p.label = match args.sections {
-            Sections::Band => format!("solid {} t={:.3}", p.part, p.thickness),
-            Sections::Patch => format!("solid {} patch {} t={:.3}", p.part, p.patches[0], p.thickness),
-        };
-    }
+    let (properties, property_of) =
+        properties::properties(&mesh.elements, &run.part_of, &run.thickness_of, args.sections, args.start_id);
 
-    let solid_volume: BTreeMap<usize, f64> = run.solids.iter().map(|s| (s.solid, s.volume)).collect();
-    let measured = quality::measure(&mesh, &part_of, &thickness_of, &solid_volume, &material);
-    let midsurface_free_length = run.result.free_edges.as_ref().map(|f| f.rim_length + f.open_length);
-    let results = quality::check(&criteria, &mesh, &measured, args.size, &material, midsurface_free_length);
+    let measured = quality::measure(&mesh, &run.part_of, &run.thickness_of, &run.solid_volume, &material);
+    let results = criteria::check(&criteria, &mesh, &measured, args.size, &material, run.free_length, &unmeshed_faces);
     let passed = results.iter().all(|r| r.passed);
 
     let name = args.midsurface.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
@@ -289,18 +217,18 @@ pub fn run(args: &MeshCli) -> Result<Exit, Error> {
         property_of,
         properties: properties.clone(),
         material,
-        placement,
+        placement: run.placement,
         start_id: args.start_id,
     };
     let mut formats = args.format.clone();
     formats.sort_by_key(|f| *f as u8);
     formats.dedup();
-    let mut outputs: Vec<(PathBuf, String)> = formats
+    let mut outputs: Vec<(PathBuf, Vec<u8>)> = formats
         .iter()
         .map(|f| match f {
-            Format::K => (with_suffix(&args.output, "k"), deck::lsdyna(&deck)),
-            Format::Bdf => (with_suffix(&args.output, "bdf"), deck::nastran(&deck)),
-            Format::Inp => (with_suffix(&args.output, "inp"), deck::abaqus(&deck)),
+            Format::K => (with_suffix(&args.output, "k"), deck::lsdyna(&deck).into_bytes()),
+            Format::Bdf => (with_suffix(&args.output, "bdf"), deck::nastran(&deck).into_bytes()),
+            Format::Inp => (with_suffix(&args.output, "inp"), deck::abaqus(&deck).into_bytes()),
         })
         .collect();
     let quality = QualityReport {
@@ -310,25 +238,55 @@ pub fn run(args: &MeshCli) -> Result<Exit, Error> {
         size: args.size,
         all_quads: args.all_quads,
         sections: args.sections,
-        position: placement,
+        position: run.placement,
         material,
         wave_speed: material.wave_speed(),
         matching,
+        meshing,
+        unmeshed_faces,
         cleanup,
         nodes: mesh.nodes.len(),
         ids: [args.start_id, deck.last_id()],
         properties,
         parts: measured.parts,
         total: measured.total,
-        midsurface_free_length,
+        midsurface_free_length: run.free_length,
         criteria: results,
         passed,
         decks: outputs.iter().map(|(p, _)| p.display().to_string()).collect(),
+        preview: args.preview.as_ref().map(|p| p.display().to_string()),
     };
+    if let Some(path) = &args.preview {
+        let colors = preview_colors(args.color, &mesh, &run, &quality.criteria);
+        outputs.push((path.clone(), preview::glb(&mesh, &colors)));
+    }
     let json = serde_json::to_string_pretty(&quality).expect("quality reports always serialise") + "\n";
-    outputs.push((with_suffix(&args.output, "quality.json"), json));
+    outputs.push((with_suffix(&args.output, "quality.json"), json.into_bytes()));
     write_all(&outputs)?;
     Ok(if passed { Exit::Clean } else { Exit::Warnings })
+}
+
+/// Each element's preview colour: its thickness band's, or red when it fails a criterion (grey when not).
+fn preview_colors(
+    coloring: Coloring,
+    mesh: &shell::ShellMesh,
+    run: &run_report::RunFacts,
+    results: &[CriterionResult],
+) -> Vec<[f64; 3]> {
+    match coloring {
+        Coloring::Thickness => mesh
+            .elements
+            .iter()
+            .map(|e| crate::output::report::band_color(&run.legend, run.thickness_of[&e.patch]))
+            .collect(),
+        Coloring::Quality => {
+            let mut failing = vec![false; mesh.elements.len()];
+            for i in results.iter().flat_map(|r| &r.failing) {
+                failing[*i] = true;
+            }
+            failing.into_iter().map(|f| if f { preview::FAILING } else { preview::PASSING }).collect()
+        }
+    }
 }
 
 fn with_suffix(base: &Path, suffix: &str) -> PathBuf {
@@ -339,7 +297,7 @@ fn with_suffix(base: &Path, suffix: &str) -> PathBuf {
 }
 
 /// Writes every file beside its final path, then renames them all: a failure leaves no half-written deck.
-fn write_all(outputs: &[(PathBuf, String)]) -> Result<(), Error> {
+fn write_all(outputs: &[(PathBuf, Vec<u8>)]) -> Result<(), Error> {
     let temp = |p: &Path| with_suffix(p, &format!("tmp{}", std::process::id()));
     for (path, text) in outputs {
         if let Err(e) = std::fs::write(temp(path), text) {
