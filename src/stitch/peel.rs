@@ -7,11 +7,12 @@
 //! between the plate's skin and the plate's mid-surface lies in the plate), but those are held on both sides;
 //! an overshoot past the wall it crossed is held along that crossing only, and the rest of its boundary is free.
 //! So a piece out of its wall goes when a large share of its boundary is free, and only when taking it away
-//! leaves no neighbour with a new free edge (a piece that other pieces hang on stays).
+//! leaves no neighbour with a new free edge (a piece that other pieces hang on stays). An island of such pieces,
+//! joined to no piece lying in its wall, goes whole.
 
 use crate::geom::inside::SolidMesh;
 use crate::model::shapes::Fused;
-use crate::trim::{Branch, TrimReason};
+use crate::trim::{connected_sets, Branch, TrimReason};
 
 use super::PatchInfo;
 
@@ -59,6 +60,16 @@ pub(super) fn dangling(fused: &Fused, keep: &[bool], patches: &[PatchInfo], soli
             kept[f] = false;
         }
         peeled.extend(round);
+    }
+    // An island of narrow pieces none of which lies in its own wall (cut off by the rounds, or made so) is no
+    // wall's mid-surface, even the largest piece of its patch.
+    for set in connected_sets(fused, &kept) {
+        if set.iter().all(|&f| out[f] && narrow(fused, f, patches)) {
+            for f in set {
+                kept[f] = false;
+                peeled.push(f);
+            }
+        }
     }
     peeled.sort_unstable();
     peeled
@@ -200,6 +211,17 @@ mod tests {
         let peeled = dangling(&fused, &[true; 5], &[info(), info()], &solids);
         assert_eq!(peeled.iter().map(|b| (b.piece, b.reason)).collect::<Vec<_>>(), vec![(2, TrimReason::Dangling)]);
         assert_eq!(peeled[0].crossing, vec![0]);
+    }
+
+    #[test]
+    fn an_island_of_pieces_out_of_their_wall_is_peeled_whole() {
+        let (mut fused, solids) = plate_and_wall();
+        // Patch 2's one piece, a strip inside the plate standing across it, joined to nothing: the largest piece of
+        // its patch, yet no wall's mid-surface.
+        fused.faces.push(face(2, 30.0, DVec3::new(20.0, 10.0, 0.5), DVec3::Y, vec![9]));
+        fused.edges.push(edge(62.0, vec![5]));
+        let peeled = dangling(&fused, &[true; 6], &[info(), info(), info()], &solids);
+        assert_eq!(peeled.iter().map(|b| b.piece).collect::<Vec<_>>(), vec![2, 5]);
     }
 
     #[test]

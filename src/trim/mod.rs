@@ -264,18 +264,7 @@ pub fn merge_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
         let moved = std::mem::take(&mut outer[other]);
         outer[root].extend(moved);
     }
-    let mut sets: Vec<Vec<usize>> = Vec::new();
-    let mut set_of_root: Vec<Option<usize>> = vec![None; n];
-    for f in (0..n).filter(|&f| keep[f]) {
-        let root = find(&mut parent, f);
-        match set_of_root[root] {
-            Some(s) => sets[s].push(f),
-            None => {
-                set_of_root[root] = Some(sets.len());
-                sets.push(vec![f]);
-            }
-        }
-    }
+    let mut sets = sets_of(&mut parent, keep);
     sets.retain(|s| s.len() > 1);
     sets
 }
@@ -292,10 +281,16 @@ pub fn connected_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
             parent[a.max(b)] = a.min(b);
         }
     }
+    sets_of(&mut parent, keep)
+}
+
+/// The kept pieces grouped by their root in the union-find forest `parent`, each set sorted, in order of its
+/// lowest piece.
+fn sets_of(parent: &mut [usize], keep: &[bool]) -> Vec<Vec<usize>> {
     let mut sets: Vec<Vec<usize>> = Vec::new();
-    let mut set_of_root: Vec<Option<usize>> = vec![None; n];
-    for f in (0..n).filter(|&f| keep[f]) {
-        let root = find(&mut parent, f);
+    let mut set_of_root: Vec<Option<usize>> = vec![None; parent.len()];
+    for f in (0..parent.len()).filter(|&f| keep[f]) {
+        let root = find(parent, f);
         match set_of_root[root] {
             Some(s) => sets[s].push(f),
             None => {
