@@ -262,7 +262,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
         }),
         Command::Batch(b) => crate::batch::run(&crate::batch::BatchArgs {
             defaults: b.defaults(),
-            check_run_args: check_run_args,
+            check_run_args,
             source: b.inputs,
             output: b.output,
             jobs: b.jobs as usize,

@@ -51,7 +51,7 @@ impl Progress {
             return;
         }
         const WIDTH: usize = 30;
-        let filled = if self.total == 0 { WIDTH } else { WIDTH * self.done / self.total };
+        let filled = (WIDTH * self.done).checked_div(self.total).unwrap_or(WIDTH);
         let elapsed = self.started.elapsed().as_secs_f64();
         let eta = if self.done > 0 && self.done < self.total {
             format!(" eta {:.0} s", elapsed / self.done as f64 * (self.total - self.done) as f64)

@@ -75,7 +75,6 @@ fn entity_name(p: &EntityProblem) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::model::face_graph::FaceGraph;
     use crate::model::face_graph::Surface;
     use crate::pairing::driver::undescribed_face_warnings;
