@@ -97,9 +97,9 @@ SAME_DOMAIN_ANGLE = 1e-6
 EDGE_POINTS = 5
 # A face spanning its surface's period to within this share closes on itself (UV bounds carry float noise).
 FULL_TURN = 1e-9
-# A face read back from the STEP file is the nearest written face when their centroids lie within this share of
-# the shape's extent and their areas agree to this share: the reader's healing may rebuild a broken face a little
-# differently (its wires, its pcurves), so not to round-off.
+# A broken face read back from the STEP file came from the written face its edges lie on, within this share of
+# the shape's extent: the reader's healing may rebuild a broken face a little differently (its wires, its
+# pcurves), so not to round-off.
 READBACK_MATCH = 1e-3
 # The STEP header's FILE_NAME carries the time of writing: fixed, so equal requests give equal bytes.
 FIXED_TIME_STAMP = "1970-01-01T00:00:00"

@@ -1,6 +1,7 @@
 """The ops available after the handshake: each takes the handle store and the request's args and
 returns the `ok` payload (see PROTOCOL.md). Importing this module imports OCP."""
 
+import os
 from collections.abc import Callable
 from typing import Any
 
@@ -35,7 +36,7 @@ from .protocol.args import (
 )
 from .protocol.errors import BadArgs, one_line
 from .protocol.handles import HandleStore
-from .write import readback, shells, step_writer
+from .write import bspline, readback, shells, step_writer
 
 Op = Callable[[HandleStore, dict[str, Any]], dict[str, Any]]
 
@@ -162,9 +163,30 @@ def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     if not isinstance(check, bool):
         raise BadArgs(f"`check` must be true or false, got {check!r}")
     written = {"path": path, "bytes": step_writer.write_step(path, shape, faces, preview, solids)}
-    if check:
-        written["valid"], written["invalid"] = readback.check_written(path, shape)
+    if not check:
+        return written
+    checked = readback.check_written(path, shape)
+    if checked.dropped:
+        # The reader dropped faces: most often offset surfaces (freeform mid-patches) it cannot rebuild. The
+        # same shape with B-spline surfaces fitted to them replaces the file when it reads back better.
+        fitted = bspline.without_offset_surfaces(shape)
+        if fitted is not shape:
+            trial = path + ".bspline"
+            # The preview already written shows the same surfaces.
+            size = step_writer.write_step(trial, fitted, faces, None, solids)
+            again = readback.check_written(trial, fitted)
+            if _broken(again) < _broken(checked):
+                os.replace(trial, path)
+                written["bytes"], checked = size, again
+            else:
+                os.remove(trial)
+    written["valid"], written["invalid"] = checked.valid, checked.invalid
     return written
+
+
+def _broken(checked: readback.Check) -> int:
+    """Faces a reader breaks or drops (an invalid file with none named counts as one)."""
+    return 0 if checked.valid else max(len(checked.invalid), checked.dropped, 1)
 
 
 def _kept_solid(store: HandleStore, entry: Any) -> tuple[str, TopoDS_Shape]:

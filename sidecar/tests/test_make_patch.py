@@ -10,6 +10,8 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolyg
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeRevol
 from OCP.BRepTools import BRepTools
+from OCP.IFSelect import IFSelect_RetDone
+from OCP.STEPControl import STEPControl_Reader
 from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Cylinder, GeomAbs_OffsetSurface, GeomAbs_Plane
 from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt
 from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_FACE, TopAbs_VERTEX, TopAbs_WIRE
@@ -460,3 +462,25 @@ def test_fill_removes_the_inner_loops_holding_the_given_edges(client, tmp_path):
     assert BRepCheck_Analyzer(face).IsValid()
     err = client.err("make_patch", handle=handle, faces=[top["id"]], offset=-2.5, fill=[10_000])
     assert "fill edge" in err["message"]
+
+
+def test_freeform_patch_reads_back_whole(client, tmp_path):
+    # A mid-patch of a B-spline skin (an offset surface) written and read back: the file holds a B-spline
+    # surface fitted to it within 1e-6 mm, which the reader rebuilds (it dropped the offset surface).
+    converter = BRepBuilderAPI_NurbsConvert(shaft(5.0, 20.0), True)
+    handle = client.load(converter.Shape(), tmp_path)
+    lateral = max(graph(client, handle)["faces"], key=lambda f: f["area"])
+    ok = client.ok("make_patch", handle=handle, faces=[lateral["id"]], offset=-1.0)
+    path = tmp_path / "patch.step"
+    written = client.ok("write_step", path=str(path), handle=ok["handle"], faces=[], check=True)
+    assert written["valid"] is True and written["invalid"] == []
+    reader = STEPControl_Reader()
+    assert reader.ReadFile(str(path)) == IFSelect_RetDone
+    reader.TransferRoots()
+    (back,) = [TopoDS.Face(f) for f in [indexed_map(reader.OneShape(), TopAbs_FACE).FindKey(1)]]
+    surface = BRepAdaptor_Surface(back)
+    assert surface.GetType() == GeomAbs_BSplineSurface
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(back)
+    for u in (0.1, 0.5, 0.9):
+        p = surface.Value(u0 + u * (u1 - u0), 0.5 * (v0 + v1))
+        assert math.hypot(p.X(), p.Y()) == pytest.approx(4.0, abs=1e-6)

@@ -25,8 +25,18 @@ pub struct Assembled {
 }
 
 pub fn make_shells<K: Kernel>(kernel: &mut K, stitched: &Outcome, fuzzy: f64) -> Result<Assembled, SidecarError> {
+    make_shells_apart(kernel, stitched, fuzzy, &BTreeSet::new())
+}
+
+/// `make_shells`, with the merge sets that hold a piece of `apart` left unmerged.
+fn make_shells_apart<K: Kernel>(
+    kernel: &mut K,
+    stitched: &Outcome,
+    fuzzy: f64,
+    apart: &BTreeSet<usize>,
+) -> Result<Assembled, SidecarError> {
     let sets = connected_sets(&stitched.fused, &stitched.keep);
-    let merge = merge_sets(&stitched.fused, &stitched.keep);
+    let merge = merged(stitched, apart);
     let shells = kernel.make_shells(stitched.fused.handle, sets, merge, fuzzy)?;
     let warning = invalid_output_warning(&shells, &stitched.fused);
     Ok(Assembled { shells, warning })
@@ -75,16 +85,22 @@ pub fn write_step<K: Kernel>(
         p.temp.to_str().map(str::to_string).ok_or_else(|| Error::output(&p.target, "path is not valid UTF-8"))
     };
     let preview = files.preview.as_ref().map(utf8).transpose()?;
-    // Read back only what the kernel doubts: a shape valid in memory reads back valid.
-    let check = !shells.valid;
+    // Read back always: a shape valid in memory may still read back with broken faces (the reader splits and
+    // heals what it reads), and the file is what users get.
+    let check = true;
     let request = Request::WriteStep { path: utf8(&files.step)?, handle: shells.handle, faces, preview, solids, check };
     kernel.call::<Written>(&request).map_err(|error| Error::Sidecar { path: input.to_path_buf(), error })
 }
 
-/// Writes the mid-surface with `write`; when the file read back has broken faces, leaves them out and writes it
-/// again without them (once). When the file is still broken without them (a shell the reader cannot take),
-/// leaving them out only costs coverage: it is written as it was, and the report names the faces that fail.
-/// Returns the shells written, the write's reply and the warning naming the faces left out.
+/// Rounds of mending broken faces: each round rebuilds the shells without what the last file broke, and
+/// pieces merged or sewn differently can break anew; a few rounds settle every part seen so far.
+const MEND_ROUNDS: usize = 8;
+
+/// Writes the mid-surface with `write`, reads the file back and, while faces of it fail the kernel's check,
+/// mends them and writes it again (a few rounds): a broken face merged from several pieces is written as its
+/// pieces, any other broken face is left out. The file kept is the one with the fewest broken faces (the
+/// earliest of equals): a broken face is worse than a hole a user can see. Returns the shells written, the
+/// write's reply and the warning naming the faces left out.
 pub fn write_checked<K: Kernel>(
     kernel: &mut K,
     stitched: &mut Outcome,
@@ -94,33 +110,66 @@ pub fn write_checked<K: Kernel>(
     write: impl Fn(&mut K, &Outcome, &Shells) -> Result<Written, Error>,
 ) -> Result<(Assembled, Written, Option<Warning>), Error> {
     let failed = |error| Error::Sidecar { path: input.to_path_buf(), error };
-    let written = write(kernel, stitched, &assembled.shells)?;
-    if written.invalid.is_empty() {
-        return Ok((assembled, written, None));
-    }
     let kept_before = stitched.keep.clone();
-    let left_out = leave_out(stitched, &assembled.shells, &written.invalid);
-    let again = make_shells(kernel, stitched, fuzzy).map_err(failed)?;
-    let rewritten = write(kernel, stitched, &again.shells)?;
-    if rewritten.valid != Some(false) {
-        return Ok((again, rewritten, Some(left_out)));
+    let mut written = write(kernel, stitched, &assembled.shells)?;
+    let mut assembled = assembled;
+    let mut apart: BTreeSet<usize> = BTreeSet::new();
+    // The best file so far: (broken faces, pieces kept, merge sets kept apart).
+    let mut best = (broken(&written), stitched.keep.clone(), apart.clone());
+    for _ in 0..MEND_ROUNDS {
+        if broken(&written) == 0 || written.invalid.is_empty() {
+            break;
+        }
+        let sets = merged(stitched, &apart);
+        for piece in pieces_of(&assembled.shells, &written.invalid) {
+            match sets.iter().find(|set| set.contains(&piece)) {
+                Some(set) => apart.extend(set.iter().copied()),
+                None => stitched.keep[piece] = false,
+            }
+        }
+        assembled = make_shells_apart(kernel, stitched, fuzzy, &apart).map_err(failed)?;
+        written = write(kernel, stitched, &assembled.shells)?;
+        if broken(&written) < best.0 {
+            best = (broken(&written), stitched.keep.clone(), apart.clone());
+        }
     }
-    stitched.keep = kept_before;
-    let assembled = make_shells(kernel, stitched, fuzzy).map_err(failed)?;
-    let written = write(kernel, stitched, &assembled.shells)?;
-    Ok((assembled, written, None))
+    if (&stitched.keep, &apart) != (&best.1, &best.2) {
+        // A later round mended no more than it broke: write the best state again.
+        stitched.keep = best.1;
+        apart = best.2;
+        assembled = make_shells_apart(kernel, stitched, fuzzy, &apart).map_err(failed)?;
+        written = write(kernel, stitched, &assembled.shells)?;
+    }
+    let left: Vec<usize> = (0..stitched.keep.len()).filter(|&p| stitched.keep[p] != kept_before[p]).collect();
+    let warning = (!left.is_empty()).then(|| left_out_warning(&stitched.fused, &left));
+    Ok((assembled, written, warning))
 }
 
-/// Leaves out of `stitched` the pieces whose faces of `shells` (indices `invalid`) failed the check once written
-/// and read back: a broken face is worse than a hole a user can see. Returns the warning naming them.
-fn leave_out(stitched: &mut Outcome, shells: &Shells, invalid: &[usize]) -> Warning {
+/// The merge sets of the kept pieces of `stitched`, but those holding a piece of `apart`.
+fn merged(stitched: &Outcome, apart: &BTreeSet<usize>) -> Vec<Vec<usize>> {
+    let mut sets = merge_sets(&stitched.fused, &stitched.keep);
+    sets.retain(|set| !set.iter().any(|p| apart.contains(p)));
+    sets
+}
+
+/// How many faces of the file fail the kernel's check once read back (an unreadable file counts as one).
+fn broken(written: &Written) -> usize {
+    match written.valid {
+        Some(false) => written.invalid.len().max(1),
+        _ => 0,
+    }
+}
+
+/// The pieces of `stitched` that faces of `shells` (indices `invalid`) are.
+fn pieces_of(shells: &Shells, invalid: &[usize]) -> Vec<usize> {
     let mut pieces: Vec<usize> = invalid.iter().map(|&j| shells.faces[j]).collect();
     pieces.sort_unstable();
     pieces.dedup();
-    for &p in &pieces {
-        stitched.keep[p] = false;
-    }
-    let fused = &stitched.fused;
+    pieces
+}
+
+/// The warning naming the pieces left out because they failed the check once written and read back.
+fn left_out_warning(fused: &Fused, pieces: &[usize]) -> Warning {
     let patches: BTreeSet<usize> = pieces.iter().map(|&p| fused.faces[p].patch).collect();
     let area: f64 = pieces.iter().map(|&p| fused.faces[p].area).sum();
     Warning {
@@ -173,7 +222,8 @@ pub fn written_area(fused: &Fused, keep: &[bool]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::shapes::FusedFace;
+    use crate::kernel::fake::FakeKernel;
+    use crate::model::shapes::{FusedEdge, FusedFace};
     use glam::DVec3;
 
     /// Fused pieces of the given (patch, area).
@@ -191,6 +241,89 @@ mod tests {
 
     fn shells(faces: Vec<usize>, valid: bool, invalid: Vec<usize>) -> Shells {
         Shells { handle: 2, count: 1, components: 1, faces, valid, invalid, edges: 0, vertices: 0 }
+    }
+
+    fn outcome(pieces: usize) -> Outcome {
+        let fused = fused(&vec![(0, 1.0); pieces]);
+        Outcome { fused, keep: vec![true; pieces], branches: vec![], joints: vec![], free: None, warnings: vec![] }
+    }
+
+    /// The sidecar's reply to make_shells with the kept pieces of `keep`, each a shell of its own, all valid.
+    fn shells_reply(keep: &[bool]) -> serde_json::Value {
+        let faces: Vec<usize> = (0..keep.len()).filter(|&p| keep[p]).collect();
+        serde_json::json!({"handle": 3, "shells": faces.len(), "components": faces.len(), "faces": faces,
+            "valid": true, "invalid": [], "edges": 0, "vertices": 0})
+    }
+
+    /// A file whose read-back breaks the written faces that are the pieces `broken` (or, with `unnamed`, breaks
+    /// without naming a face).
+    fn written(shells: &Shells, broken: &[usize], unnamed: bool) -> Written {
+        let invalid: Vec<usize> = (0..shells.faces.len()).filter(|&j| broken.contains(&shells.faces[j])).collect();
+        let valid = invalid.is_empty() && !unnamed;
+        Written { path: String::new(), bytes: 0, valid: Some(valid), invalid }
+    }
+
+    #[test]
+    fn broken_faces_are_left_out_round_after_round_until_the_file_reads_back_valid() {
+        // Piece 1 breaks on reading; without it, piece 2 does (its merge or sewing changed); without both, none.
+        let mut stitched = outcome(3);
+        let replies = vec![shells_reply(&[true, false, true]), shells_reply(&[true, false, false])];
+        let mut kernel = FakeKernel::new(replies);
+        let first = Assembled { shells: shells(vec![0, 1, 2], true, vec![]), warning: None };
+        let write = |_: &mut FakeKernel, s: &Outcome, sh: &Shells| {
+            let broken: Vec<usize> = if s.keep[1] { vec![1] } else if s.keep[2] { vec![2] } else { vec![] };
+            Ok(written(sh, &broken, false))
+        };
+        let (assembled, last, warning) =
+            write_checked(&mut kernel, &mut stitched, first, 0.0, Path::new("in.step"), write).unwrap();
+        assert_eq!(stitched.keep, vec![true, false, false]);
+        assert_eq!(assembled.shells.faces, vec![0]);
+        assert_eq!(last.valid, Some(true));
+        let warning = warning.unwrap();
+        assert_eq!(warning.code, "faces_left_out");
+        assert!(warning.message.starts_with("2 face(s) of patches 1,"), "{}", warning.message);
+    }
+
+    #[test]
+    fn a_round_that_mends_nothing_is_undone() {
+        // Without piece 1 the file still breaks (unnamed): leaving it out bought nothing, so it stays in.
+        let mut stitched = outcome(3);
+        let replies = vec![shells_reply(&[true, false, true]), shells_reply(&[true, true, true])];
+        let mut kernel = FakeKernel::new(replies);
+        let first = Assembled { shells: shells(vec![0, 1, 2], true, vec![]), warning: None };
+        let write = |_: &mut FakeKernel, s: &Outcome, sh: &Shells| {
+            Ok(if s.keep[1] { written(sh, &[1], false) } else { written(sh, &[], true) })
+        };
+        let (assembled, last, warning) =
+            write_checked(&mut kernel, &mut stitched, first, 0.0, Path::new("in.step"), write).unwrap();
+        assert_eq!(stitched.keep, vec![true, true, true]);
+        assert_eq!(assembled.shells.faces, vec![0, 1, 2]);
+        assert_eq!(last.invalid, vec![1]);
+        assert!(warning.is_none());
+    }
+
+    #[test]
+    fn a_broken_merged_face_is_written_as_its_pieces() {
+        // Pieces 0 and 1 of one patch share an edge no other piece uses: merged into one face, which breaks on
+        // reading; written as two faces, it reads back valid and nothing is left out.
+        let mut stitched = outcome(3);
+        stitched.fused.faces[0].edges = vec![0];
+        stitched.fused.faces[1].edges = vec![0];
+        stitched.fused.edges = vec![FusedEdge { length: 1.0, faces: vec![0, 1], points: vec![] }];
+        let mut kernel = FakeKernel::new(vec![shells_reply(&[true, true, true])]);
+        let first = Assembled { shells: shells(vec![0, 2], true, vec![]), warning: None };
+        let write = |_: &mut FakeKernel, _: &Outcome, sh: &Shells| {
+            let merged_face_breaks = sh.faces.len() == 2;
+            Ok(written(sh, if merged_face_breaks { &[0] } else { &[] }, false))
+        };
+        let (assembled, last, warning) =
+            write_checked(&mut kernel, &mut stitched, first, 0.0, Path::new("in.step"), write).unwrap();
+        let Some(Request::MakeShells { merge, .. }) = kernel.requests.last() else { panic!("no make_shells") };
+        assert!(merge.is_empty(), "{merge:?}");
+        assert_eq!(stitched.keep, vec![true, true, true]);
+        assert_eq!(assembled.shells.faces, vec![0, 1, 2]);
+        assert_eq!(last.valid, Some(true));
+        assert!(warning.is_none());
     }
 
     #[test]

@@ -6,29 +6,47 @@ index in the written shape: the reader's order when it read as many faces as wer
 back as written), else the face with the same centroid and area.
 """
 
+from dataclasses import dataclass
+
+from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.BRepGProp import BRepGProp
-from OCP.GProp import GProp_GProps
+from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+from OCP.gp import gp_Pnt
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
-from OCP.TopAbs import TopAbs_FACE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Shape
 
 from ..constants import READBACK_MATCH
 from ..geom.topology import indexed_map
 
 
-def check_written(path: str, shape: TopoDS_Shape) -> tuple[bool, list[int]]:
-    """(whether the file at `path` reads back valid, the faces of `shape` (MapShapes order) whose read-back
-    face fails BRepCheck). A file that cannot be read back counts as invalid with no face named."""
+@dataclass(frozen=True)
+class Check:
+    """What a reader makes of a written file."""
+
+    valid: bool
+    # Faces of the written shape (MapShapes order) whose read-back face fails BRepCheck or was dropped.
+    invalid: list[int]
+    # How many written faces the reader dropped (fewer faces read than written, or shells read back empty).
+    dropped: int = 0
+
+
+def check_written(path: str, shape: TopoDS_Shape) -> Check:
+    """The file at `path` read back and checked against `shape`, the shape written. A file that cannot be read
+    back counts as invalid with no face named."""
     reader = STEPControl_Reader()
     if reader.ReadFile(path) != IFSelect_RetDone:
-        return False, []
+        return Check(False, [])
     reader.TransferRoots()
     back = reader.OneShape()
     if BRepCheck_Analyzer(back).IsValid():
-        return True, []
+        return Check(True, [])
     back_faces = []
     explorer = TopExp_Explorer(back, TopAbs_FACE)
     while explorer.More():
@@ -36,30 +54,100 @@ def check_written(path: str, shape: TopoDS_Shape) -> tuple[bool, list[int]]:
         explorer.Next()
     bad = [k for k, face in enumerate(back_faces) if not BRepCheck_Analyzer(face).IsValid()]
     own = indexed_map(shape, TopAbs_FACE)
+    lost = _lost_faces(back, shape, own)
+    dropped = max(len(lost), own.Size() - len(back_faces), 0)
     if len(back_faces) == own.Size():
         # Manifold shells read back as written, face for face in the same order; a broken face's area and
         # centroid cannot be trusted to find it.
-        return False, bad
-    written = [_centroid_and_area(own.FindKey(j + 1)) for j in range(own.Size())]
-    size = max((max(abs(c) for c in centroid) for centroid, _ in written), default=1.0)
-    invalid = set()
-    for centroid, area in (_centroid_and_area(back_faces[k]) for k in bad):
-        nearest = min(range(len(written)), key=lambda j: _distance(written[j][0], centroid), default=None)
-        if nearest is None:
+        return Check(False, sorted(set(bad) | lost), dropped)
+    written = [own.FindKey(j + 1) for j in range(own.Size())]
+    boxes = [_box(face) for face in written]
+    size = max((max(abs(c) for c in box) for box in boxes), default=1.0)
+    reach = READBACK_MATCH * max(size, 1.0)
+    invalid = set(lost)
+    for k in bad:
+        origin = _origin(back_faces[k], written, boxes, reach)
+        if origin is not None:
+            invalid.add(origin)
+    return Check(False, sorted(invalid), dropped)
+
+
+def _lost_faces(back: TopoDS_Shape, shape: TopoDS_Shape, own) -> set[int]:
+    """The faces (MapShapes order of `shape`) of the written shells that read back empty: the reader could not
+    take any of their faces. Shells read back in the order written, so they are matched by position when as
+    many were read as written."""
+    back_shells, shells = _children(back, TopAbs_SHELL), _children(shape, TopAbs_SHELL)
+    if len(back_shells) != len(shells):
+        return set()
+    lost = set()
+    for back_shell, shell in zip(back_shells, shells):
+        if back_shell.NbChildren() == 0:
+            lost.update(own.FindIndex(face) - 1 for face in _children(shell, TopAbs_FACE))
+    return lost
+
+
+def _children(shape: TopoDS_Shape, kind) -> list[TopoDS_Shape]:
+    found = []
+    explorer = TopExp_Explorer(shape, kind)
+    while explorer.More():
+        found.append(explorer.Current())
+        explorer.Next()
+    return found
+
+
+def _origin(face: TopoDS_Shape, written: list[TopoDS_Shape], boxes: list[tuple[float, ...]], reach: float) -> int | None:
+    """The written face on which most of the midpoints of `face`'s edges lie (within `reach`); when none holds
+    half of them (the reader rebuilt the face off its surface), the face nearest to them (by the median
+    distance). A broken face often has an edge or two off its surface, which is why it is broken."""
+    points = _edge_midpoints(face)
+    if not points:
+        return None
+    # Only faces near the broken one can be its origin: their boxes reach its edges within its own size.
+    own = _box(face)
+    margin = reach + max(own[i + 3] - own[i] for i in range(3))
+    scored = []
+    for j, box in enumerate(boxes):
+        if not any(all(box[i] - margin <= p[i] <= box[i + 3] + margin for i in range(3)) for p in points):
             continue
-        near_centroid, near_area = written[nearest]
-        close = _distance(near_centroid, centroid) <= READBACK_MATCH * max(size, 1.0)
-        if close and abs(near_area - area) <= READBACK_MATCH * max(near_area, area) + 1e-12:
-            invalid.add(nearest)
-    return False, sorted(invalid)
+        distances = sorted(_distance_to(written[j], p) for p in points)
+        on = [d for d in distances if d <= reach]
+        scored.append(((len(on), -sum(on)), -distances[len(distances) // 2], j))
+    if not scored:
+        return None
+    best_on = max(scored)
+    if best_on[0][0] * 2 >= len(points):
+        return best_on[2]
+    return max(scored, key=lambda s: s[1])[2]
 
 
-def _centroid_and_area(face: TopoDS_Shape) -> tuple[tuple[float, float, float], float]:
-    props = GProp_GProps()
-    BRepGProp.SurfaceProperties_s(face, props)
-    c = props.CentreOfMass()
-    return (c.X(), c.Y(), c.Z()), props.Mass()
+# The broken face's edges sampled for its origin: a few suffice, the longest say the most.
+ORIGIN_EDGES = 8
 
 
-def _distance(a: tuple[float, float, float], b: tuple[float, float, float]) -> float:
-    return sum((x - y) ** 2 for x, y in zip(a, b)) ** 0.5
+def _edge_midpoints(face: TopoDS_Shape) -> list[tuple[float, float, float]]:
+    edges = []
+    explorer = TopExp_Explorer(face, TopAbs_EDGE)
+    while explorer.More():
+        edge = TopoDS.Edge(explorer.Current())
+        explorer.Next()
+        if BRep_Tool.Degenerated_s(edge):
+            continue
+        curve = BRepAdaptor_Curve(edge)
+        first, last = curve.FirstParameter(), curve.LastParameter()
+        a, m, b = curve.Value(first), curve.Value(0.5 * (first + last)), curve.Value(last)
+        edges.append((a.Distance(m) + m.Distance(b), (m.X(), m.Y(), m.Z())))
+    edges.sort(key=lambda e: -e[0])
+    return [point for _, point in edges[:ORIGIN_EDGES]]
+
+
+def _distance_to(face: TopoDS_Shape, point: tuple[float, float, float]) -> float:
+    vertex = BRepBuilderAPI_MakeVertex(gp_Pnt(*point)).Vertex()
+    extrema = BRepExtrema_DistShapeShape(vertex, face)
+    return extrema.Value() if extrema.IsDone() else float("inf")
+
+
+def _box(face: TopoDS_Shape) -> tuple[float, ...]:
+    box = Bnd_Box()
+    BRepBndLib.Add_s(face, box)
+    low, high = box.CornerMin(), box.CornerMax()
+    return (low.X(), low.Y(), low.Z(), high.X(), high.Y(), high.Z())

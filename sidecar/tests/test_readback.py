@@ -1,0 +1,51 @@
+"""The read-back check names the written faces a reader breaks or drops."""
+
+from OCP.BRep import BRep_Builder
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopoDS import TopoDS_Compound, TopoDS_Shell
+
+from midsurf_sidecar.geom.topology import indexed_map
+from midsurf_sidecar.write import readback
+from shapes import box
+
+
+def shells_of(groups):
+    """A compound of shells, one per list of faces."""
+    builder = BRep_Builder()
+    compound = TopoDS_Compound()
+    builder.MakeCompound(compound)
+    for faces in groups:
+        shell = TopoDS_Shell()
+        builder.MakeShell(shell)
+        for face in faces:
+            builder.Add(shell, face)
+        builder.Add(compound, shell)
+    return compound
+
+
+def box_faces():
+    faces = indexed_map(box(), TopAbs_FACE)
+    return [faces.FindKey(i + 1) for i in range(faces.Size())]
+
+
+def test_a_shell_read_back_empty_names_its_faces():
+    faces = box_faces()
+    written = shells_of([faces[:2], faces[2:5], faces[5:]])
+    back = shells_of([faces[:2], [], faces[5:]])
+    own = indexed_map(written, TopAbs_FACE)
+    assert readback._lost_faces(back, written, own) == {2, 3, 4}
+
+
+def test_shells_read_back_split_name_nothing():
+    # The reader split a shell: positions no longer match, so no face can be named by its shell.
+    faces = box_faces()
+    written = shells_of([faces[:3], faces[3:]])
+    back = shells_of([faces[:1], faces[1:3], [], faces[3:]])
+    assert readback._lost_faces(back, written, indexed_map(written, TopAbs_FACE)) == set()
+
+
+def test_a_face_read_back_comes_from_the_face_its_edges_lie_on():
+    faces = box_faces()
+    boxes = [readback._box(face) for face in faces]
+    for k, face in enumerate(faces):
+        assert readback._origin(face, faces, boxes, 1e-3) == k
