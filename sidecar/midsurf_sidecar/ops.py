@@ -166,9 +166,10 @@ def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     if not check:
         return written
     checked = readback.check_written(path, shape)
-    if checked.dropped:
+    if checked.dropped and (checked.unnamed or bspline.any_offset_surface(shape, checked.invalid)):
         # The reader dropped faces: most often offset surfaces (freeform mid-patches) it cannot rebuild. The
-        # same shape with B-spline surfaces fitted to them replaces the file when it reads back better.
+        # same shape with B-spline surfaces fitted to them replaces the file when it reads back better (not
+        # tried when no face named broken is one: fitted surfaces are heavy to write and read).
         fitted = bspline.without_offset_surfaces(shape)
         if fitted is not shape:
             trial = path + ".bspline"

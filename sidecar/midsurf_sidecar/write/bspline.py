@@ -16,13 +16,23 @@ from OCP.TopoDS import TopoDS, TopoDS_Shape
 from ..geom.topology import indexed_map
 
 
+def any_offset_surface(shape: TopoDS_Shape, faces: list[int]) -> bool:
+    """Whether any of `faces` (MapShapes order of `shape`) lies on an offset surface."""
+    face_map = indexed_map(shape, TopAbs_FACE)
+    return any(_is_offset(TopoDS.Face(face_map.FindKey(j + 1))) for j in faces)
+
+
+def _is_offset(face: TopoDS_Shape) -> bool:
+    return BRepAdaptor_Surface(face, False).GetType() == GeomAbs_OffsetSurface
+
+
 def without_offset_surfaces(shape: TopoDS_Shape) -> TopoDS_Shape:
     """`shape` with every offset surface turned into a B-spline surface, its faces in the same MapShapes order
     and its edges shared as before; `shape` itself when it has no offset surface or the conversion changes the
     faces' order or count (the names and thicknesses are attached by that order)."""
     faces = indexed_map(shape, TopAbs_FACE)
     own = [TopoDS.Face(faces.FindKey(j + 1)) for j in range(faces.Size())]
-    if not any(BRepAdaptor_Surface(face, False).GetType() == GeomAbs_OffsetSurface for face in own):
+    if not any(_is_offset(face) for face in own):
         return shape
     convert = ShapeCustom_ConvertToBSpline()
     convert.SetOffsetMode(True)

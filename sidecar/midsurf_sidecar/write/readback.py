@@ -33,8 +33,10 @@ class Check:
     valid: bool
     # Faces of the written shape (MapShapes order) whose read-back face fails BRepCheck or was dropped.
     invalid: list[int]
-    # How many written faces the reader dropped (fewer faces read than written, or shells read back empty).
+    # How many written faces the reader dropped (fewer faces read than written, or shells read back empty), and
+    # how many of those could not be named.
     dropped: int = 0
+    unnamed: int = 0
 
 
 def check_written(path: str, shape: TopoDS_Shape) -> Check:
@@ -56,10 +58,11 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
     own = indexed_map(shape, TopAbs_FACE)
     lost = _lost_faces(back, shape, own)
     dropped = max(len(lost), own.Size() - len(back_faces), 0)
+    unnamed = dropped - len(lost)
     if len(back_faces) == own.Size():
         # Manifold shells read back as written, face for face in the same order; a broken face's area and
         # centroid cannot be trusted to find it.
-        return Check(False, sorted(set(bad) | lost), dropped)
+        return Check(False, sorted(set(bad) | lost), dropped, unnamed)
     written = [own.FindKey(j + 1) for j in range(own.Size())]
     boxes = [_box(face) for face in written]
     size = max((max(abs(c) for c in box) for box in boxes), default=1.0)
@@ -69,7 +72,7 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
         origin = _origin(back_faces[k], written, boxes, reach)
         if origin is not None:
             invalid.add(origin)
-    return Check(False, sorted(invalid), dropped)
+    return Check(False, sorted(invalid), dropped, unnamed)
 
 
 def _lost_faces(back: TopoDS_Shape, shape: TopoDS_Shape, own) -> set[int]:
