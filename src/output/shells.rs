@@ -263,19 +263,47 @@ mod tests {
         Written { path: String::new(), bytes: 0, valid: Some(valid), invalid }
     }
 
+    /// `write_checked` on `stitched`, first written as one face per piece, the kernel answering make_shells with
+    /// `replies` and the file read back as `read` says; returns its result and the kernel (its requests).
+    fn check_all(
+        stitched: &mut Outcome,
+        replies: Vec<serde_json::Value>,
+        read: impl Fn(&Outcome, &Shells) -> Written,
+    ) -> (Assembled, Written, Option<Warning>, FakeKernel) {
+        let faces = (0..stitched.keep.len()).collect();
+        check_all_from(stitched, faces, replies, read)
+    }
+
+    /// `check_all`, first written as the faces `faces` (the piece each is).
+    fn check_all_from(
+        stitched: &mut Outcome,
+        faces: Vec<usize>,
+        replies: Vec<serde_json::Value>,
+        read: impl Fn(&Outcome, &Shells) -> Written,
+    ) -> (Assembled, Written, Option<Warning>, FakeKernel) {
+        let mut kernel = FakeKernel::new(replies);
+        let first = Assembled { shells: shells(faces, true, vec![]), warning: None };
+        let write = |_: &mut FakeKernel, s: &Outcome, sh: &Shells| Ok(read(s, sh));
+        let (assembled, written, warning) =
+            write_checked(&mut kernel, stitched, first, 0.0, Path::new("in.step"), write).unwrap();
+        (assembled, written, warning, kernel)
+    }
+
     #[test]
     fn broken_faces_are_left_out_round_after_round_until_the_file_reads_back_valid() {
         // Piece 1 breaks on reading; without it, piece 2 does (its merge or sewing changed); without both, none.
         let mut stitched = outcome(3);
         let replies = vec![shells_reply(&[true, false, true]), shells_reply(&[true, false, false])];
-        let mut kernel = FakeKernel::new(replies);
-        let first = Assembled { shells: shells(vec![0, 1, 2], true, vec![]), warning: None };
-        let write = |_: &mut FakeKernel, s: &Outcome, sh: &Shells| {
-            let broken: Vec<usize> = if s.keep[1] { vec![1] } else if s.keep[2] { vec![2] } else { vec![] };
-            Ok(written(sh, &broken, false))
-        };
-        let (assembled, last, warning) =
-            write_checked(&mut kernel, &mut stitched, first, 0.0, Path::new("in.step"), write).unwrap();
+        let (assembled, last, warning, _) = check_all(&mut stitched, replies, |s, sh| {
+            let broken: Vec<usize> = if s.keep[1] {
+                vec![1]
+            } else if s.keep[2] {
+                vec![2]
+            } else {
+                vec![]
+            };
+            written(sh, &broken, false)
+        });
         assert_eq!(stitched.keep, vec![true, false, false]);
         assert_eq!(assembled.shells.faces, vec![0]);
         assert_eq!(last.valid, Some(true));
@@ -289,13 +317,13 @@ mod tests {
         // Without piece 1 the file still breaks (unnamed): leaving it out bought nothing, so it stays in.
         let mut stitched = outcome(3);
         let replies = vec![shells_reply(&[true, false, true]), shells_reply(&[true, true, true])];
-        let mut kernel = FakeKernel::new(replies);
-        let first = Assembled { shells: shells(vec![0, 1, 2], true, vec![]), warning: None };
-        let write = |_: &mut FakeKernel, s: &Outcome, sh: &Shells| {
-            Ok(if s.keep[1] { written(sh, &[1], false) } else { written(sh, &[], true) })
-        };
-        let (assembled, last, warning) =
-            write_checked(&mut kernel, &mut stitched, first, 0.0, Path::new("in.step"), write).unwrap();
+        let (assembled, last, warning, _) = check_all(&mut stitched, replies, |s, sh| {
+            if s.keep[1] {
+                written(sh, &[1], false)
+            } else {
+                written(sh, &[], true)
+            }
+        });
         assert_eq!(stitched.keep, vec![true, true, true]);
         assert_eq!(assembled.shells.faces, vec![0, 1, 2]);
         assert_eq!(last.invalid, vec![1]);
@@ -310,14 +338,12 @@ mod tests {
         stitched.fused.faces[0].edges = vec![0];
         stitched.fused.faces[1].edges = vec![0];
         stitched.fused.edges = vec![FusedEdge { length: 1.0, faces: vec![0, 1], points: vec![] }];
-        let mut kernel = FakeKernel::new(vec![shells_reply(&[true, true, true])]);
-        let first = Assembled { shells: shells(vec![0, 2], true, vec![]), warning: None };
-        let write = |_: &mut FakeKernel, _: &Outcome, sh: &Shells| {
-            let merged_face_breaks = sh.faces.len() == 2;
-            Ok(written(sh, if merged_face_breaks { &[0] } else { &[] }, false))
-        };
-        let (assembled, last, warning) =
-            write_checked(&mut kernel, &mut stitched, first, 0.0, Path::new("in.step"), write).unwrap();
+        // First written as faces 0 (pieces 0 and 1 merged) and 2.
+        let (assembled, last, warning, kernel) =
+            check_all_from(&mut stitched, vec![0, 2], vec![shells_reply(&[true, true, true])], |_, sh| {
+                let merged_face_breaks = sh.faces.len() == 2;
+                written(sh, if merged_face_breaks { &[0] } else { &[] }, false)
+            });
         let Some(Request::MakeShells { merge, .. }) = kernel.requests.last() else { panic!("no make_shells") };
         assert!(merge.is_empty(), "{merge:?}");
         assert_eq!(stitched.keep, vec![true, true, true]);

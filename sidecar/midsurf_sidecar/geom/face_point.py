@@ -10,14 +10,14 @@ from OCP.BRepClass import BRepClass_FaceClassifier
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
 from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec, gp_Vec2d
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_IN
-from OCP.TopExp import TopExp_Explorer
+from OCP.TopAbs import TopAbs_IN
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
 from ..constants import BESIDE_EDGE_STEPS, FALLBACK_ANGLE, FALLBACK_DEFLECTION_RATIO, SINGULAR_METRIC
 from ..protocol.errors import KernelError
 from .face_normals import OutwardNormals
+from .topology import curve_edges
 from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 
 
@@ -55,12 +55,7 @@ def _beside_edges(face: TopoDS_Face, diagonal: float) -> Iterator[tuple[float, f
     """UV points on both sides of each edge's middle, ever closer to it (3D distances, so a surface's
     uneven parametrisation does not matter); the classifier keeps the inside ones."""
     surface = BRepAdaptor_Surface(face, False)
-    explorer = TopExp_Explorer(face, TopAbs_EDGE)
-    while explorer.More():
-        edge = TopoDS.Edge(explorer.Current())
-        explorer.Next()
-        if BRep_Tool.Degenerated_s(edge):
-            continue
+    for edge in curve_edges(face):
         curve = BRepAdaptor_Curve2d(edge, face)
         uv, tangent = gp_Pnt2d(), gp_Vec2d()
         curve.D1(0.5 * (curve.FirstParameter() + curve.LastParameter()), uv, tangent)

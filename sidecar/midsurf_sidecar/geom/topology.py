@@ -1,14 +1,17 @@
 """Indexed sub-shape maps and mass properties: the id and measurement conventions shared by all ops."""
 
+from collections.abc import Iterator
+
 from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Tool
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
 from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedShapeMap
 from OCP.GProp import GProp_GProps
-from OCP.TopAbs import TopAbs_WIRE, TopAbs_ShapeEnum
-from OCP.TopExp import TopExp
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE, TopAbs_ShapeEnum
+from OCP.TopExp import TopExp, TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
 
 
 def indexed_map(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> IndexedShapeMap:
@@ -29,6 +32,24 @@ def surface_props(shape: TopoDS_Shape) -> GProp_GProps:
     props = GProp_GProps()
     BRepGProp.SurfaceProperties_s(shape, props)
     return props
+
+
+def subshapes(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> list[TopoDS_Shape]:
+    """The sub-shapes of `kind` in explorer order, repeats included (an edge of two faces comes twice)."""
+    found = []
+    explorer = TopExp_Explorer(shape, kind)
+    while explorer.More():
+        found.append(explorer.Current())
+        explorer.Next()
+    return found
+
+
+def curve_edges(shape: TopoDS_Shape) -> Iterator[TopoDS_Edge]:
+    """The edges of `shape` that have a curve (degenerate ones, at a pole, left out), in explorer order."""
+    for edge in subshapes(shape, TopAbs_EDGE):
+        edge = TopoDS.Edge(edge)
+        if not BRep_Tool.Degenerated_s(edge):
+            yield edge
 
 
 def face_wires(face: TopoDS_Face) -> list[TopoDS_Wire]:

@@ -9,7 +9,6 @@ back as written), else the face with the same centroid and area.
 from dataclasses import dataclass
 
 from OCP.Bnd import Bnd_Box
-from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
@@ -18,12 +17,11 @@ from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.gp import gp_Pnt
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL
-from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Shape
+from OCP.TopAbs import TopAbs_FACE, TopAbs_SHELL
+from OCP.TopoDS import TopoDS_Shape
 
 from ..constants import READBACK_MATCH
-from ..geom.topology import indexed_map
+from ..geom.topology import curve_edges, indexed_map, subshapes
 
 
 @dataclass(frozen=True)
@@ -49,11 +47,7 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
     back = reader.OneShape()
     if BRepCheck_Analyzer(back).IsValid():
         return Check(True, [])
-    back_faces = []
-    explorer = TopExp_Explorer(back, TopAbs_FACE)
-    while explorer.More():
-        back_faces.append(explorer.Current())
-        explorer.Next()
+    back_faces = subshapes(back, TopAbs_FACE)
     bad = [k for k, face in enumerate(back_faces) if not BRepCheck_Analyzer(face).IsValid()]
     own = indexed_map(shape, TopAbs_FACE)
     lost = _lost_faces(back, shape, own)
@@ -79,23 +73,14 @@ def _lost_faces(back: TopoDS_Shape, shape: TopoDS_Shape, own) -> set[int]:
     """The faces (MapShapes order of `shape`) of the written shells that read back empty: the reader could not
     take any of their faces. Shells read back in the order written, so they are matched by position when as
     many were read as written."""
-    back_shells, shells = _children(back, TopAbs_SHELL), _children(shape, TopAbs_SHELL)
+    back_shells, shells = subshapes(back, TopAbs_SHELL), subshapes(shape, TopAbs_SHELL)
     if len(back_shells) != len(shells):
         return set()
     lost = set()
     for back_shell, shell in zip(back_shells, shells):
         if back_shell.NbChildren() == 0:
-            lost.update(own.FindIndex(face) - 1 for face in _children(shell, TopAbs_FACE))
+            lost.update(own.FindIndex(face) - 1 for face in subshapes(shell, TopAbs_FACE))
     return lost
-
-
-def _children(shape: TopoDS_Shape, kind) -> list[TopoDS_Shape]:
-    found = []
-    explorer = TopExp_Explorer(shape, kind)
-    while explorer.More():
-        found.append(explorer.Current())
-        explorer.Next()
-    return found
 
 
 def _origin(face: TopoDS_Shape, written: list[TopoDS_Shape], boxes: list[tuple[float, ...]], reach: float) -> int | None:
@@ -129,12 +114,7 @@ ORIGIN_EDGES = 8
 
 def _edge_midpoints(face: TopoDS_Shape) -> list[tuple[float, float, float]]:
     edges = []
-    explorer = TopExp_Explorer(face, TopAbs_EDGE)
-    while explorer.More():
-        edge = TopoDS.Edge(explorer.Current())
-        explorer.Next()
-        if BRep_Tool.Degenerated_s(edge):
-            continue
+    for edge in curve_edges(face):
         curve = BRepAdaptor_Curve(edge)
         first, last = curve.FirstParameter(), curve.LastParameter()
         a, m, b = curve.Value(first), curve.Value(0.5 * (first + last)), curve.Value(last)
