@@ -35,7 +35,7 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
                 return Err(Rejection::NotCoaxial { offset });
             }
             let t = radial_gap((*ra, *xa), (*rb, *xb), tol)?;
-            sampled_pair(fa, fb, PairKind::Spherical, Some(t), tol)?
+            sampled_pair(fa, fb, PairKind::Spherical, Spread::Exact(t), tol)?
         }
         (
             Surface::Torus { center: ca, axis: aa, major_radius: ma, minor_radius: ra, convex: xa },
@@ -47,7 +47,7 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
                 return Err(Rejection::NotCoaxial { offset });
             }
             let t = radial_gap((*ra, *xa), (*rb, *xb), tol)?;
-            sampled_pair(fa, fb, PairKind::Toroidal, Some(t), tol)?
+            sampled_pair(fa, fb, PairKind::Toroidal, Spread::Exact(t), tol)?
         }
         (
             Surface::Cone { origin: oa, axis: aa, half_angle: ha, apex: pa, convex: xa, .. },
@@ -57,10 +57,30 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
             if xa == xb {
                 return Err(Rejection::SameSense);
             }
-            let exact = parallel_cones((*aa, *ha, *pa), (*ab, *hb, *pb), tol)?;
-            sampled_pair(fa, fb, PairKind::Conical, exact, tol)?
+            let spread = match parallel_cones((*aa, *ha, *pa), (*ab, *hb, *pb), tol)? {
+                Some(t) => Spread::Exact(t),
+                None => drafted_rulings((*aa, *ha), (*ab, *hb), tol)?,
+            };
+            sampled_pair(fa, fb, PairKind::Conical, spread, tol)?
         }
-        (sa, sb) if sa.is_freeform() || sb.is_freeform() => sampled_pair(fa, fb, PairKind::Freeform, None, tol)?,
+        (
+            Surface::Cylinder { origin: oa, axis: aa, convex: xa, .. },
+            Surface::Cone { origin: ob, axis: ab, half_angle: h, convex: xb, .. },
+        )
+        | (
+            Surface::Cone { origin: ob, axis: ab, half_angle: h, convex: xb, .. },
+            Surface::Cylinder { origin: oa, axis: aa, convex: xa, .. },
+        ) => {
+            coaxial(*oa, *aa, *ob, *ab, tol)?;
+            if xa == xb {
+                return Err(Rejection::SameSense);
+            }
+            let spread = drafted_rulings((*aa, 0.0), (*ab, *h), tol)?;
+            sampled_pair(fa, fb, PairKind::Conical, spread, tol)?
+        }
+        (sa, sb) if sa.is_freeform() || sb.is_freeform() => {
+            sampled_pair(fa, fb, PairKind::Freeform, Spread::NearlyConstant, tol)?
+        }
         (sa, sb) => return Err(Rejection::Incompatible { kinds: [sa.kind_name(), sb.kind_name()] }),
     };
     reject_stub(graph, [a, b], thickness.mean)?;
@@ -314,12 +334,40 @@ fn parallel_cones(
     Ok(Some(t))
 }
 
+/// How the distance between two faces measured by rays may vary.
+enum Spread {
+    /// Known exactly from the surfaces (concentric spheres, parallel cones): the rays only test the overlap.
+    Exact(f64),
+    /// A freeform pair: nearly constant (`Tolerances::freeform_spread`).
+    NearlyConstant,
+    /// Drafted skins (rulings within twice the draft limit): the wall tapers, its range is reported.
+    Tapered,
+}
+
+/// Two coaxial cones, or a cone and a cylinder (half-angle 0), whose rulings in a plane through the axis lean
+/// apart by no more than twice the draft limit are the drafted skins of one wall, as two draft planes are (a
+/// moulded boss: its outside narrows upwards, its core-pin hole widens upwards). OCCT's half-angles are
+/// signed along the axis (the radius grows along it when positive), so the rulings lean apart by the
+/// difference of the half-angles measured along one axis direction.
+fn drafted_rulings(
+    (axis_a, half_a): (DVec3, f64),
+    (axis_b, half_b): (DVec3, f64),
+    tol: &Tolerances,
+) -> Result<Spread, Rejection> {
+    let half_b = if axis_a.dot(axis_b) >= 0.0 { half_b } else { -half_b };
+    let lean = (half_a - half_b).abs();
+    if lean > 2.0 * tol.draft_max + tol.parallel_angle {
+        return Err(Rejection::Angle { degrees: lean.to_degrees(), limit_degrees: (2.0 * tol.draft_max).to_degrees() });
+    }
+    Ok(Spread::Tapered)
+}
+
 /// Pairs measured by rays: from the smaller face along its inward normal onto the other.
 fn sampled_pair(
     fa: &Face,
     fb: &Face,
     kind: PairKind,
-    exact: Option<f64>,
+    spread: Spread,
     tol: &Tolerances,
 ) -> Result<(PairKind, Thickness, f64), Rejection> {
     let (from, to) = if fa.area <= fb.area { (fa, fb) } else { (fb, fa) };
@@ -333,14 +381,12 @@ fn sampled_pair(
         let facing = (to.centroid - from.point).dot(from.normal) < 0.0;
         return Err(if facing { Rejection::Overlap { share, limit: tol.overlap_share } } else { Rejection::NotFacing });
     };
-    let thickness = match exact {
-        Some(t) => Thickness::uniform(t),
-        None => {
-            if max - min > tol.freeform_spread * mean {
-                return Err(Rejection::Spread { min, max });
-            }
-            Thickness { mean, min, max }
+    let thickness = match spread {
+        Spread::Exact(t) => Thickness::uniform(t),
+        Spread::NearlyConstant if max - min > tol.freeform_spread * mean => {
+            return Err(Rejection::Spread { min, max });
         }
+        Spread::NearlyConstant | Spread::Tapered => Thickness { mean, min, max },
     };
     Ok((kind, thickness, s.hit_area))
 }

@@ -200,6 +200,27 @@ fn coaxial_cones_with_the_same_half_angle() {
     assert!((p.thickness.mean - 2.0).abs() < 1e-9 && p.thickness.min == p.thickness.max, "{:?}", p.thickness);
 }
 
+/// A convex cone of half-angle `degrees` about the z axis, radius 6 at z = 0, up to z = 15.
+fn cone_round_the_axis(degrees: f64) -> Face {
+    let h = degrees.to_radians();
+    let apex = DVec3::new(0.0, 0.0, -6.0 / h.tan());
+    let d0 = -apex.z / h.cos();
+    cone(apex, h, (d0, d0 + 15.0 / h.cos()), true)
+}
+
+#[test]
+fn a_drafted_cone_round_a_cylindrical_hole_is_a_tapered_wall() {
+    let hole = || cylinder(DVec3::ZERO, 4.0, (-std::f64::consts::PI, std::f64::consts::PI), 15.0, false);
+    // Drafted by 1 degree: the wall runs from 2 at z = 0 to 2 + 15 tan(1 deg) = 2.26 at the top, and says so.
+    let p = pair_of(vec![hole(), cone_round_the_axis(1.0)]).unwrap();
+    assert_eq!(p.kind, PairKind::Conical);
+    let t = p.thickness;
+    assert!(t.min > 1.9 && t.max < 2.35 && t.max - t.min > 0.15 && t.min < t.mean && t.mean < t.max, "{t:?}");
+    // Leaning apart by more than twice the 3 degree draft limit: not one wall.
+    let steep = pair_of(vec![hole(), cone_round_the_axis(7.0)]);
+    assert!(matches!(steep, Err(Rejection::Angle { .. })), "{steep:?}");
+}
+
 /// A wavy sheet z = base + 2 sin(x/10) over [0,60]x[0,40]; `outward` up or down.
 fn wavy(base: f64, up: bool) -> Face {
     crate::synthetic::face(crate::model::face_graph::Surface::Bspline, 30, |u, v| {
