@@ -127,3 +127,11 @@ STRIP_RELATIVE_TOLERANCE = 1e-6
 AXIAL_DEG = 45.0
 # Points along an edge's pcurve to find its extent in the cylinder's parameters.
 PCURVE_SAMPLES = 64
+
+# An edge whose pcurve's v stays within this (relative) is a parallel of a surface of revolution, and an
+# outward direction within this of its meridian runs along it (joints.edge_strip._along_meridian).
+MERIDIAN_ISO = 1e-6
+
+# A patch edge within this share of its wall's thickness of the solid's boundary is on the rim (Rust's
+# tolerance::RIM_SHARE): a curved patch overshooting its rim by no more is not cut to the solid.
+RIM_SHARE = 0.1

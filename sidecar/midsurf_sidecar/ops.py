@@ -1,6 +1,7 @@
 """The ops available after the handshake: each takes the handle store and the request's args and
 returns the `ok` payload (see PROTOCOL.md). Importing this module imports OCP."""
 
+import dataclasses
 import os
 from collections.abc import Callable
 from typing import Any
@@ -10,6 +11,7 @@ from OCP.BRep import BRep_Builder
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 
+from .constants import RIM_SHARE
 from .describe import face_graph
 from .fuse import patch_fuse
 from .geom import booleans
@@ -75,9 +77,13 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         raise BadArgs("make_patch needs exactly one of `offset` (mm) and `plane` ({origin, normal})")
     clip = _clip(args, count, len(face_ids))
     reverse = optional_bool(args, "reverse", False)
-    options = mid_patch.Options(clip, reverse, _fill_edges(solid, args))
+    options = mid_patch.Options(clip, reverse, _fill_edges(solid, args), solid)
     if "offset" in args:
-        patch, faces, filled = mid_patch.offset_patch(face_map, face_ids, require_number(args, "offset"), options)
+        offset = require_number(args, "offset")
+        # An offset to mid-wall is half the wall: a curved patch's overshoot of its rim within the rim
+        # tolerance (a tenth of the wall) is left as it is (within_solid).
+        options = dataclasses.replace(options, negligible=RIM_SHARE * 2.0 * abs(offset))
+        patch, faces, filled = mid_patch.offset_patch(face_map, face_ids, offset, options)
     else:
         plane = require_object(args, "plane")
         origin, normal = require_point(plane, "origin"), require_direction(plane, "normal")

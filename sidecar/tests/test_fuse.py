@@ -195,3 +195,30 @@ def test_a_boss_foot_arc_inside_a_face_is_a_boundary_edge_after_split_internal(c
     (foot,) = [e for e in fused["edges"] if len(e["faces"]) == 3]
     assert foot["length"] == pytest.approx(1.5 * 3.141592653589793 * 5)
     assert all(p[2] == pytest.approx(1.0) for p in foot["points"])
+
+
+def test_a_rib_foot_on_a_curved_face_splits_it_along_the_rib_plane(client):
+    """A flat rib standing part way across a cylindrical panel, at a slant to its axis: its foot is an ellipse's
+    arc (not a line, not a circle) ending inside the panel, an INTERNAL edge there. The section of the panel
+    with the rib's plane completes it through to the panel's boundary, so the foot is a boundary edge shared by
+    the two panel pieces and the rib."""
+    import math
+
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.Geom import Geom_CylindricalSurface
+    from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
+
+    # A panel on the cylinder R 50 about the y axis (z up to 50 at x = 0), x from -30 to 30 round it, y 0..40.
+    surface = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0), gp_Dir(-1, 0, 0)), 50.0)
+    half = math.asin(30.0 / 50.0)
+    panel = BRepBuilderAPI_MakeFace(surface, math.pi / 2 - half, math.pi / 2 + half, 0.0, 40.0, 1e-7).Face()
+    # The rib: in the plane x + y = 20, x from 0 to 10, from z = 45 (below the panel) up to 60.
+    rib = rectangle((0, 20, 45), (10, 10, 45), (10, 10, 60), (0, 20, 60))
+    handles = put_patches(client, panel, rib)
+    fused = client.ok("fuse", patches=handles, fuzzy=1e-6, split_internal=True)
+    check_consistent(fused)
+    panel_pieces = [f for f in fused["faces"] if f["patch"] == 0]
+    assert len(panel_pieces) == 2
+    assert sum(f["area"] for f in panel_pieces) == pytest.approx(2 * half * 50 * 40)
+    feet = [e for e in fused["edges"] if len(e["faces"]) >= 3]
+    assert feet and all(p[0] + p[1] == pytest.approx(20.0) for e in feet for p in e["points"])

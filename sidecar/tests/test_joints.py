@@ -185,3 +185,38 @@ def test_a_saddle_edge_grown_onto_a_face_is_a_band_of_its_own_cylinder():
     band = sum(2.0 * (math.sqrt(25.0 - (2.0 * math.sin(a)) ** 2) - low) * math.pi / steps for a in angles)
     assert surface_props(grown).Mass() == pytest.approx(band, rel=1e-4)
     assert BRepAdaptor_Surface(strip(side, saddles[0], lengths)).GetType() != GeomAbs_Cylinder
+
+
+def test_a_cone_foot_grows_along_its_own_cone():
+    """The foot circle of a conical patch (a drafted boss's mid-surface) grown down its meridian stays on the
+    patch's cone, so it merges into the patch: a ruled strip would be a face of its own."""
+    import math
+
+    from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCone
+    from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Cone
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    from midsurf_sidecar.geom.topology import surface_props
+    from midsurf_sidecar.joints.edge_strip import strip
+
+    # Radius 6 at z = 0 narrowing to 5 at z = 10.
+    solid = BRepPrimAPI_MakeCone(6.0, 5.0, 10.0).Shape()
+    faces = TopExp_Explorer(solid, TopAbs_FACE)
+    while BRepAdaptor_Surface(TopoDS.Face(faces.Current())).GetType() != GeomAbs_Cone:
+        faces.Next()
+    side = TopoDS.Face(faces.Current())
+    edges = TopExp_Explorer(side, TopAbs_EDGE)
+    foot = None
+    while edges.More():
+        curve = BRepAdaptor_Curve(TopoDS.Edge(edges.Current()))
+        if curve.GetType() == GeomAbs_Circle and curve.Value(curve.FirstParameter()).Z() == pytest.approx(0.0):
+            foot = TopoDS.Edge(edges.Current())
+        edges.Next()
+    slant = math.hypot(1.0, 10.0)
+    grown = strip(side, foot, [slant / 10.0] * 5)  # down by 1 along the cone: radius 6 -> 6.1
+    assert BRepAdaptor_Surface(grown).GetType() == GeomAbs_Cone
+    # The frustum from r 6.1 at z = -1 to r 6 at z = 0: pi (r1 + r2) x slant length.
+    assert surface_props(grown).Mass() == pytest.approx(math.pi * (6.1 + 6.0) * slant / 10.0, rel=1e-9)

@@ -171,11 +171,13 @@ def test_cone_offset_shrinks_the_radius_by_the_cosine(client, tmp_path):
     half_angle = math.atan2(3.0, 10.0)
     (new_face,) = patch_faces(client, ok["handle"])
     rims = sorted({(round(math.hypot(x, y), 9), round(z, 9)) for x, y, z in vertices(new_face)})
-    # The normal leans up by the half angle: each rim moves in by its cosine and up by its sine.
+    # The normal leans up by the half angle: each rim moves in by its cosine and up by its sine. The bottom rim
+    # would then hang below the base, outside the solid: it is cut at the base, where the offset cone's radius
+    # is 5 - 1 / cos(half angle).
     shift_in, shift_up = math.cos(half_angle), math.sin(half_angle)
     assert len(rims) == 2
     assert rims[0] == pytest.approx((2.0 - shift_in, 10.0 - shift_up))
-    assert rims[1] == pytest.approx((5.0 - shift_in, -shift_up))
+    assert rims[1] == pytest.approx((5.0 - 1.0 / math.cos(half_angle), 0.0))
     assert dot(ok["faces"][0]["normal"], lateral["normal"]) > 0.99
 
 
@@ -486,3 +488,23 @@ def test_freeform_patch_reads_back_whole(client, tmp_path):
     surface = BRepAdaptor_Surface(back)
     assert surface.GetType() == GeomAbs_BSplineSurface
     assert_on_radius(surface, back, 4.0)
+
+
+def test_a_dome_patch_ends_on_the_rim_plane_not_past_it(client, tmp_path):
+    """A spherical shell R 30 / R 28 cut by a plane 10 above its centre: the outer sphere offset inwards by 1
+    keeps its latitude bounds, so its rim would sit 1/3 mm below the rim plane, outside the solid. Cut to the
+    solid, the patch ends on the plane: what lies outside goes."""
+    from OCP.BRepAlgoAPI import BRepAlgoAPI_Common, BRepAlgoAPI_Cut
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
+    from OCP.gp import gp_Pnt
+
+    shell = BRepAlgoAPI_Cut(BRepPrimAPI_MakeSphere(30.0).Shape(), BRepPrimAPI_MakeSphere(28.0).Shape()).Shape()
+    cap = BRepAlgoAPI_Common(shell, BRepPrimAPI_MakeBox(gp_Pnt(-40, -40, 10), gp_Pnt(40, 40, 40)).Shape()).Shape()
+    handle = client.load(cap, tmp_path)
+    outer = face_with(graph(client, handle), "sphere", lambda f: f["surface"]["radius"] > 29)["id"]
+    ok = client.ok("make_patch", handle=handle, faces=[outer], offset=-1.0)
+    (face,) = patch_faces(client, ok["handle"])
+    lowest = min(z for _, _, z in vertices(face))
+    assert lowest == pytest.approx(10.0, abs=1e-6)
+    # The zone of the mid sphere R 29 above z = 10: 2 pi R h.
+    assert ok["faces"][0]["area"] == pytest.approx(2 * math.pi * 29 * (29 - 10), rel=1e-6)

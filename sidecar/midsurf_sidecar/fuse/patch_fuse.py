@@ -5,12 +5,14 @@ from typing import Any
 
 from OCP.BOPAlgo import BOPAlgo_Builder
 from OCP.BRep import BRep_Builder, BRep_Tool
-from OCP.BRepAdaptor import BRepAdaptor_Curve
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Section
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Line
+from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_INTERNAL
-from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
+from OCP.TopExp import TopExp, TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
+from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
 
 from ..geom.booleans import general_fuse, split, within
 from ..geom.topology import IndexedShapeMap, diagonal, indexed_map
@@ -51,18 +53,23 @@ def fuse(patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool = False
         face_map = indexed_map(fused, TopAbs_FACE)
         patch_of = _trace_patches(builder, inputs, input_patch, face_map)
     if split_internal:
-        split_fused, patch_of = _split_faces(fused, face_map, patch_of, _internal_edge_lines(face_map), fuzzy)
+        split_fused, patch_of = _split_faces(fused, face_map, patch_of, _internal_edge_lines(fused, face_map), fuzzy)
         if split_fused is not fused:
             fused, face_map = split_fused, indexed_map(split_fused, TopAbs_FACE)
     return fused, describe(fused, face_map, patch_of)
 
 
-def _internal_edge_lines(face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
+def _internal_edge_lines(fused: TopoDS_Shape, face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
     """A T-joint that stops inside a face (a rib ending part way up a wall) is an INTERNAL edge of that face,
     which STEP cannot carry: the face is split along the edge's line, through to its boundary, so the joint is
     a boundary edge shared by the pieces and the stem. An arc (a boss's foot on its floor) is completed to its
-    circle, which cuts a disc out of the face. Other curves stay internal. `face_map`: the faces of the fused
-    shape."""
+    circle, which cuts a disc out of the face. Any other curve on a curved face is completed the same way, as
+    the section of the face with the surface of the stem standing on it, when that surface is a plane,
+    cylinder or cone (a flat rib on a freeform shell): the line and the circle are that section's simplest
+    cases. Other curves stay internal (on a planar face, a section of a slanted stem's cylinder would cut a
+    disc the stem's foot only touches). `fused`: the fused shape, `face_map` its faces."""
+    stems = IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher()
+    TopExp.MapShapesAndAncestors_s(fused, TopAbs_EDGE, TopAbs_FACE, stems)
     tools = []
     for i in range(face_map.Size()):
         face = TopoDS.Face(face_map.FindKey(i + 1))
@@ -79,7 +86,28 @@ def _internal_edge_lines(face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
                 tools.extend(within(BRepBuilderAPI_MakeEdge(curve.Line(), first, last).Edge(), face))
             elif curve.GetType() == GeomAbs_Circle:
                 tools.extend(within(BRepBuilderAPI_MakeEdge(curve.Circle()).Edge(), face))
+            elif stems.Contains(edge) and BRepAdaptor_Surface(face, False).GetType() != GeomAbs_Plane:
+                tools.extend(_stem_section(face, stems.FindFromKey(edge)))
     return tools
+
+
+def _stem_section(face: TopoDS_Face, sharing: Any) -> list[TopoDS_Shape]:
+    """The edges where the surface of the first face other than `face` among `sharing` (the faces on an
+    INTERNAL edge of `face`: the stem of the joint) crosses `face`, when that surface is a plane, cylinder or
+    cone (unbounded: the section runs through to the face's boundary); [] otherwise or when OCCT gives up."""
+    for other in sharing:
+        if other.IsSame(face):
+            continue
+        if BRepAdaptor_Surface(TopoDS.Face(other), False).GetType() not in (GeomAbs_Plane, GeomAbs_Cylinder, GeomAbs_Cone):
+            return []
+        section = BRepAlgoAPI_Section(face, BRep_Tool.Surface_s(TopoDS.Face(other)), False)
+        section.Approximation(True)
+        section.Build()
+        if not section.IsDone():
+            return []
+        edges = indexed_map(section.Shape(), TopAbs_EDGE)
+        return [edges.FindKey(k + 1) for k in range(edges.Size())]
+    return []
 
 
 def _split_faces(

@@ -17,14 +17,16 @@ from OCP.BRepFill import BRepFill
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
 from OCP.collections import HArray1_gp_Pnt
 from OCP.GC import GC_MakeSegment
-from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
+from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
 from OCP.GeomAPI import GeomAPI_Interpolate
 from OCP.gp import gp_Pln, gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
-from ..constants import AXIAL_DEG, CONFUSION, PCURVE_SAMPLES, STRIP_RELATIVE_TOLERANCE, SWEEP_PARALLEL
+from ..constants import (
+    AXIAL_DEG, CONFUSION, MERIDIAN_ISO, PCURVE_SAMPLES, STRIP_RELATIVE_TOLERANCE, SWEEP_PARALLEL,
+)
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import interior_point
 from ..geom.topology import diagonal, indexed_map
@@ -58,6 +60,10 @@ def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[f
         sweep = scale(first, sum(lengths) / len(lengths))
         made = _along_cylinder(face, axis, edge, sweep) if axis is not None else None
         made = made if made is not None else _prism(edge, sweep)
+        if made is not None:
+            return made
+    if one_length:
+        made = _along_meridian(face, edge, samples[len(samples) // 2], sum(lengths) / len(lengths))
         if made is not None:
             return made
     # Only onto a face: the partner of an L-joint grows a ruled strip too, and the kernel could not cut the
@@ -131,6 +137,37 @@ def _along_cylinder(face: TopoDS_Face, axis: Vec, edge: TopoDS_Shape, sweep: Vec
     v1 = v0 + along
     maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v0, v1), max(v0, v1), CONFUSION)
     return maker.Face() if maker.IsDone() else None
+
+
+def _along_meridian(face: TopoDS_Face, edge: TopoDS_Shape, sample, length: float) -> TopoDS_Face | None:
+    """On a cone patch, an edge along a parallel (an iso-v circle or arc) grown by `length` along the meridian
+    (the ruling) as a face of the patch's own cone, so the strip merges into the patch (a ruled strip is a face
+    of its own, off the surface by its chords). By symmetry the outward direction is along the meridian all
+    round a parallel: checked at the edge's middle `sample`. None for other surfaces and edges (spheres and
+    tori were tried: on a part with toroidal blends their strips split more patches than they joined)."""
+    adaptor = BRepAdaptor_Surface(face, False)
+    if adaptor.GetType() != GeomAbs_Cone:
+        return None
+    curve = BRepAdaptor_Curve2d(TopoDS.Edge(edge), face)
+    first, last = curve.FirstParameter(), curve.LastParameter()
+    uv = [curve.Value(first + (last - first) * k / PCURVE_SAMPLES) for k in range(PCURVE_SAMPLES + 1)]
+    us, vs = [p.X() for p in uv], [p.Y() for p in uv]
+    u0, u1, v = min(us), max(us), vs[0]
+    if u1 - u0 <= 0.0 or max(vs) - min(vs) > MERIDIAN_ISO * max(1.0, abs(v)):
+        return None
+    point, along_u, along_v = gp_Pnt(), gp_Vec(), gp_Vec()
+    adaptor.D1(0.5 * (u0 + u1), v, point, along_u, along_v)
+    speed = along_v.Magnitude()
+    if speed <= CONFUSION:
+        return None
+    meridian = scale(xyz(along_v), 1.0 / speed)
+    if abs(dot(meridian, sample.outward)) < 1.0 - MERIDIAN_ISO:
+        return None
+    step = length / speed * (1.0 if dot(meridian, sample.outward) > 0.0 else -1.0)
+    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v, v + step), max(v, v + step), CONFUSION)
+    if not maker.IsDone() or not BRepCheck_Analyzer(maker.Face()).IsValid():
+        return None
+    return maker.Face()
 
 
 # A curved edge of a cylindrical patch whose outward directions mostly (the median) lie within this angle of

@@ -101,6 +101,30 @@ def clip_to_partners(
     return [TopoDS.Face(merged.FindKey(i)) for i in range(1, merged.Size() + 1)]
 
 
+def within_solid(face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float, negligible: float) -> list[TopoDS_Face]:
+    """The pieces of a curved mid-patch face that lie in `solid`; [face] when none lies outside, when all that
+    does is a band no wider than `negligible`, or when OCCT gives up. Offsetting a sphere, a cone, a torus or a
+    freeform face keeps its (u, v) bounds, so where the wall's rim is not square to the face (a dome cut by a
+    plane off its centre) the offset rim runs past the solid's boundary: cut there, the patch ends on the rim
+    face as a wall's mid-surface does. A band within the rim tolerance stays: a drafted wall's patches all
+    overshoot their rim by as little, planar ones included, and cutting only the curved ones would part them."""
+    splitter = split(face, [solid], fuzzy)
+    if splitter is None:
+        return [face]
+    pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
+    if pieces.Size() < 2:
+        return [face]
+    classifier = BRepClass3d_SolidClassifier(solid)
+    faces = [TopoDS.Face(pieces.FindKey(i)) for i in range(1, pieces.Size() + 1)]
+    inside = [_inside(classifier, _point(piece), fuzzy) for piece in faces]
+    outside = [piece for piece, keep in zip(faces, inside) if not keep]
+    if all(keep for keep in inside) or not any(inside):
+        return [face]
+    if all(_width(piece, surface_props(piece).Mass()) <= negligible for piece in outside):
+        return [face]
+    return [piece for piece, keep in zip(faces, inside) if keep]
+
+
 def _point(piece: TopoDS_Face):
     return interior_point(OutwardNormals(piece), diagonal(piece))[0]
 

@@ -6,16 +6,19 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from OCP.BRep import BRep_Builder
+from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepTools import BRepTools, BRepTools_ReShape
+from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
+from ..constants import CONFUSION
 from ..geom.face_measure import measure
 from ..geom.topology import IndexedShapeMap
 from ..geom.vectors import Vec
 from ..protocol.errors import OpError, one_line
-from .face_clip import clip_to_partners
+from .face_clip import clip_to_partners, within_solid
 from .face_offset import offset_face
 from .face_projection import project_face
 
@@ -39,11 +42,15 @@ class Clip:
 class Options:
     """`clip`: see Clip; `reverse`: turn every new face over (the wall's reference side is its bottom: the
     patch normal then points out of the top side); `fill`: edges of the solid's suppressed features, whose
-    inner loops are removed from the source faces before they are offset or projected."""
+    inner loops are removed from the source faces before they are offset or projected; `solid`: the solid
+    the faces come from, which a curved patch face is cut to (within_solid), unless what lies outside is no
+    wider than `negligible`."""
 
     clip: Clip | None = None
     reverse: bool = False
     fill: list[TopoDS_Shape] = field(default_factory=list)
+    solid: TopoDS_Shape | None = None
+    negligible: float = 0.0
 
 
 def offset_patch(
@@ -106,6 +113,9 @@ def _patch(
                 new_faces = clip_to_partners(
                     new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end, exclude
                 )
+            if options.solid is not None and not _plane_or_cylinder(new_faces[0]):
+                fuzzy = clip.fuzzy if clip is not None else CONFUSION
+                new_faces = [piece for f in new_faces for piece in within_solid(f, options.solid, fuzzy, options.negligible)]
             if options.reverse:
                 new_faces = [TopoDS.Face(f.Reversed()) for f in new_faces]
             described.extend({"source": face_id, **measure(f)} for f in new_faces)
@@ -114,3 +124,8 @@ def _patch(
         for f in new_faces:
             builder.Add(compound, f)
     return compound, described, filled
+
+
+def _plane_or_cylinder(face: TopoDS_Face) -> bool:
+    """Planar and cylindrical patch faces are cut to their partners' footprints instead (clip_to_partners)."""
+    return BRepAdaptor_Surface(face, True).GetType() in (GeomAbs_Plane, GeomAbs_Cylinder)
