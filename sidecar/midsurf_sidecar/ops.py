@@ -1,7 +1,6 @@
 """The ops available after the handshake: each takes the handle store and the request's args and
 returns the `ok` payload (see PROTOCOL.md). Importing this module imports OCP."""
 
-import dataclasses
 import os
 from collections.abc import Callable
 from typing import Any
@@ -77,12 +76,12 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         raise BadArgs("make_patch needs exactly one of `offset` (mm) and `plane` ({origin, normal})")
     clip = _clip(args, count, len(face_ids))
     reverse = optional_bool(args, "reverse", False)
-    options = mid_patch.Options(clip, reverse, _fill_edges(solid, args), solid)
-    if "offset" in args:
-        offset = require_number(args, "offset")
-        # An offset to mid-wall is half the wall: a curved patch's overshoot of its rim within the rim
-        # tolerance (a tenth of the wall) is left as it is (within_solid).
-        options = dataclasses.replace(options, negligible=RIM_SHARE * 2.0 * abs(offset))
+    offset = require_number(args, "offset") if "offset" in args else None
+    # An offset to mid-wall is half the wall: a curved patch's overshoot of its rim within the rim tolerance
+    # (a tenth of the wall) is left as it is (within_solid).
+    negligible = RIM_SHARE * 2.0 * abs(offset) if offset is not None else 0.0
+    options = mid_patch.Options(clip, reverse, _fill_edges(solid, args), solid, negligible)
+    if offset is not None:
         patch, faces, filled = mid_patch.offset_patch(face_map, face_ids, offset, options)
     else:
         plane = require_object(args, "plane")

@@ -97,6 +97,29 @@ def test_strip_needs_positive_lengths(client):
     assert reply["err"]["code"] == "bad_args"
 
 
+def side_and_foot(solid, kind):
+    """The lateral face of a solid of revolution standing on z = 0 (the face of surface `kind`) and its foot:
+    the circle edge at z = 0."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+    from OCP.GeomAbs import GeomAbs_Circle
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    faces = TopExp_Explorer(solid, TopAbs_FACE)
+    while BRepAdaptor_Surface(TopoDS.Face(faces.Current())).GetType() != kind:
+        faces.Next()
+    side = TopoDS.Face(faces.Current())
+    edges = TopExp_Explorer(side, TopAbs_EDGE)
+    while edges.More():
+        edge = TopoDS.Edge(edges.Current())
+        curve = BRepAdaptor_Curve(edge)
+        if curve.GetType() == GeomAbs_Circle and curve.Value(curve.FirstParameter()).Z() == pytest.approx(0.0):
+            return side, edge
+        edges.Next()
+    raise AssertionError("no foot circle at z = 0")
+
+
 def test_a_tube_end_grows_along_its_own_cylinder():
     """A circle edge of a cylindrical patch grown along the axis stays on the patch's cylinder (so it merges
     into the patch), not a ruled or extruded surface."""
@@ -105,28 +128,11 @@ def test_a_tube_end_grows_along_its_own_cylinder():
     from OCP.BRepAdaptor import BRepAdaptor_Surface
     from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
     from OCP.GeomAbs import GeomAbs_Cylinder
-    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS
 
     from midsurf_sidecar.joints.edge_strip import strip
     from midsurf_sidecar.geom.topology import surface_props
 
-    solid = BRepPrimAPI_MakeCylinder(2.0, 5.0).Shape()
-    explorer = TopExp_Explorer(solid, TopAbs_FACE)
-    while BRepAdaptor_Surface(TopoDS.Face(explorer.Current())).GetType() != GeomAbs_Cylinder:
-        explorer.Next()
-    side = TopoDS.Face(explorer.Current())
-    edges = TopExp_Explorer(side, TopAbs_EDGE)
-    bottom = None
-    while edges.More():
-        edge = TopoDS.Edge(edges.Current())
-        from OCP.BRepAdaptor import BRepAdaptor_Curve
-
-        curve = BRepAdaptor_Curve(edge)
-        if curve.GetType().name == "GeomAbs_Circle" and curve.Value(curve.FirstParameter()).Z() == pytest.approx(0.0):
-            bottom = edge
-        edges.Next()
+    side, bottom = side_and_foot(BRepPrimAPI_MakeCylinder(2.0, 5.0).Shape(), GeomAbs_Cylinder)
     grown = strip(side, bottom, [1.5] * 5)
     assert BRepAdaptor_Surface(grown).GetType() == GeomAbs_Cylinder
     assert surface_props(grown).Mass() == pytest.approx(2 * math.pi * 2.0 * 1.5)
@@ -192,29 +198,15 @@ def test_a_cone_foot_grows_along_its_own_cone():
     patch's cone, so it merges into the patch: a ruled strip would be a face of its own."""
     import math
 
-    from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
     from OCP.BRepPrimAPI import BRepPrimAPI_MakeCone
-    from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Cone
-    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS
+    from OCP.GeomAbs import GeomAbs_Cone
 
     from midsurf_sidecar.geom.topology import surface_props
     from midsurf_sidecar.joints.edge_strip import strip
 
     # Radius 6 at z = 0 narrowing to 5 at z = 10.
-    solid = BRepPrimAPI_MakeCone(6.0, 5.0, 10.0).Shape()
-    faces = TopExp_Explorer(solid, TopAbs_FACE)
-    while BRepAdaptor_Surface(TopoDS.Face(faces.Current())).GetType() != GeomAbs_Cone:
-        faces.Next()
-    side = TopoDS.Face(faces.Current())
-    edges = TopExp_Explorer(side, TopAbs_EDGE)
-    foot = None
-    while edges.More():
-        curve = BRepAdaptor_Curve(TopoDS.Edge(edges.Current()))
-        if curve.GetType() == GeomAbs_Circle and curve.Value(curve.FirstParameter()).Z() == pytest.approx(0.0):
-            foot = TopoDS.Edge(edges.Current())
-        edges.Next()
+    side, foot = side_and_foot(BRepPrimAPI_MakeCone(6.0, 5.0, 10.0).Shape(), GeomAbs_Cone)
     slant = math.hypot(1.0, 10.0)
     grown = strip(side, foot, [slant / 10.0] * 5)  # down by 1 along the cone: radius 6 -> 6.1
     assert BRepAdaptor_Surface(grown).GetType() == GeomAbs_Cone
