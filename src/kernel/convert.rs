@@ -44,6 +44,8 @@ impl From<wire::Shells> for Shells {
             invalid: w.invalid,
             edges: w.edges,
             vertices: w.vertices,
+            free_edges: w.free_edges,
+            nonmanifold_edges: w.nonmanifold_edges,
         }
     }
 }

@@ -325,6 +325,9 @@ pub struct Shells {
     pub invalid: Vec<usize>,
     pub edges: usize,
     pub vertices: usize,
+    /// Edges used by one face of the shells written, and by three or more (see model::shapes::Shells).
+    pub free_edges: usize,
+    pub nonmanifold_edges: usize,
 }
 
 /// Where a ray along a free edge's outward direction meets a target face's support surface.

@@ -58,6 +58,10 @@ pub struct Shells {
     pub invalid: Vec<usize>,
     pub edges: usize,
     pub vertices: usize,
+    /// Edges used by one face of the shells, and by three or more: counted on the shells written, where a free
+    /// or T edge of a face closed on itself may be written as two edges.
+    pub free_edges: usize,
+    pub nonmanifold_edges: usize,
 }
 
 /// Where a ray along a free edge's outward direction meets a target face's support surface.

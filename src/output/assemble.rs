@@ -55,7 +55,7 @@ pub fn report(
         });
     }
     let topology_patches = patches.iter().map(PatchReport::topology).collect();
-    let topology = topology::summarise(&fused, &keep, &shells, topology_patches, &joints, free);
+    let topology = topology::summarise(&shells, topology_patches, &joints, free);
     Report {
         report_version: REPORT_VERSION,
         midsurf_version: env!("CARGO_PKG_VERSION"),

@@ -240,7 +240,18 @@ mod tests {
     }
 
     fn shells(faces: Vec<usize>, valid: bool, invalid: Vec<usize>) -> Shells {
-        Shells { handle: 2, count: 1, components: 1, faces, valid, invalid, edges: 0, vertices: 0 }
+        Shells {
+            handle: 2,
+            count: 1,
+            components: 1,
+            faces,
+            valid,
+            invalid,
+            edges: 0,
+            vertices: 0,
+            free_edges: 0,
+            nonmanifold_edges: 0,
+        }
     }
 
     fn outcome(pieces: usize) -> Outcome {
@@ -252,7 +263,8 @@ mod tests {
     fn shells_reply(keep: &[bool]) -> serde_json::Value {
         let faces: Vec<usize> = (0..keep.len()).filter(|&p| keep[p]).collect();
         serde_json::json!({"handle": 3, "shells": faces.len(), "components": faces.len(), "faces": faces,
-            "valid": true, "invalid": [], "edges": 0, "vertices": 0})
+            "valid": true, "invalid": [], "edges": 0, "vertices": 0,
+            "free_edges": 0, "nonmanifold_edges": 0})
     }
 
     /// A file whose read-back breaks the written faces that are the pieces `broken` (or, with `unnamed`, breaks

@@ -4,7 +4,7 @@
 use serde::Serialize;
 
 use super::round;
-use crate::model::shapes::{Fused, Shells};
+use crate::model::shapes::Shells;
 use crate::pairing::PairKind;
 use crate::stitch::{FreeEdges, JointReport};
 
@@ -17,8 +17,11 @@ pub struct Topology {
     pub euler: i64,
     /// Edge-connected sets of faces written: one per connected part wanted.
     pub components: usize,
-    /// Edges shared by three or more faces (T- and X-joints).
+    /// Edges shared by three or more faces (T- and X-joints), in the file written.
     pub nonmanifold_edges: usize,
+    /// Edges used by one face, in the file written (`free_edges` below sorts those of the stitched result into
+    /// rim and open; a free edge of a face closed on itself is written as two).
+    pub free_edge_count: usize,
     pub free_edges: Option<FreeEdges>,
     pub patches: Vec<TopologyPatch>,
     pub joints: Vec<JointReport>,
@@ -35,14 +38,11 @@ pub struct TopologyPatch {
 }
 
 pub fn summarise(
-    fused: &Fused,
-    keep: &[bool],
     shells: &Shells,
     patches: Vec<TopologyPatch>,
     joints: &[JointReport],
     free: Option<FreeEdges>,
 ) -> Topology {
-    let nonmanifold_edges = fused.edges.iter().filter(|e| e.faces.iter().filter(|&&f| keep[f]).count() >= 3).count();
     let faces = shells.faces.len();
     let mut joints: Vec<JointReport> =
         joints.iter().map(|j| JointReport { length: round(j.length, 2), ..j.clone() }).collect();
@@ -53,7 +53,8 @@ pub fn summarise(
         vertices: shells.vertices,
         euler: shells.vertices as i64 - shells.edges as i64 + faces as i64,
         components: shells.components,
-        nonmanifold_edges,
+        nonmanifold_edges: shells.nonmanifold_edges,
+        free_edge_count: shells.free_edges,
         free_edges: free.map(|f| FreeEdges {
             rim_length: round(f.rim_length, 2),
             open_length: round(f.open_length, 2),

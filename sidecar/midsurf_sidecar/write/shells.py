@@ -10,8 +10,9 @@ from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_VERTEX
-from OCP.TopExp import TopExp_Explorer
+from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape, TopoDS_Shell
+from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
 from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
@@ -65,7 +66,25 @@ def make_shells(
         "invalid": invalid,
         "edges": indexed_map(compound, TopAbs_EDGE).Size(),
         "vertices": indexed_map(compound, TopAbs_VERTEX).Size(),
+        **_edge_uses(compound),
     }
+
+
+def _edge_uses(compound: TopoDS_Compound) -> dict[str, int]:
+    """Edges of the shells written used by one face (free) and by three or more (non-manifold), a seam counted
+    once per face: the counts a reader of the file finds, after faces closed on themselves were split."""
+    owners = IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher()
+    TopExp.MapShapesAndAncestors_s(compound, TopAbs_EDGE, TopAbs_FACE, owners)
+    free = nonmanifold = 0
+    for k in range(1, owners.Size() + 1):
+        if BRep_Tool.Degenerated_s(TopoDS.Edge(owners.FindKey(k))):
+            continue
+        faces = ShapeMap()
+        for face in owners.FindFromIndex(k):
+            faces.Add(face)
+        free += faces.Size() == 1
+        nonmanifold += faces.Size() >= 3
+    return {"free_edges": free, "nonmanifold_edges": nonmanifold}
 
 
 def _merge(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy: float) -> None:
