@@ -135,3 +135,8 @@ MERIDIAN_ISO = 1e-6
 # A patch edge within this share of its wall's thickness of the solid's boundary is on the rim (Rust's
 # tolerance::RIM_SHARE): a curved patch overshooting its rim by no more is not cut to the solid.
 RIM_SHARE = 0.1
+
+# A boolean split only cuts faces: the pieces of a face cover its area, up to what merging within the fuzzy value
+# moves (fuzzy x its boundary). Faces whose pieces differ by more, together by more than this share of the area
+# split, are a broken result (inverted or dropped loops), not a split (geom.booleans.check_area_kept).
+AREA_KEPT_SHARE = 0.01

@@ -4,10 +4,16 @@ from collections import Counter
 from pathlib import Path
 
 import pytest
+from OCP.BRep import BRep_Tool
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_FACE
+from OCP.gp import gp_Pnt
+from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_FACE, TopAbs_VERTEX
+from OCP.TopoDS import TopoDS
 
-from midsurf_sidecar.geom.topology import indexed_map
+from midsurf_sidecar.fuse.patch_fuse import _chain_through
+from midsurf_sidecar.geom.booleans import general_fuse
+from midsurf_sidecar.geom.topology import indexed_map, subshapes
 from patch_shapes import horizontal, put_patches, rectangle, vertical
 from shapes import bent_sheet
 
@@ -222,3 +228,18 @@ def test_a_rib_foot_on_a_curved_face_splits_it_along_the_rib_plane(client):
     assert sum(f["area"] for f in panel_pieces) == pytest.approx(2 * half * 50 * 40)
     feet = [e for e in fused["edges"] if len(e["faces"]) >= 3]
     assert feet and all(p[0] + p[1] == pytest.approx(20.0) for e in feet for p in e["points"])
+
+
+def test_a_stem_section_is_cut_only_along_the_chain_through_the_joint():
+    # The stem's surface crosses the face twice (two lines, as a plane crosses a half tube); the joint lies on
+    # the first, made of two edges end to end: only those two are kept.
+    def edge(a, b):
+        return BRepBuilderAPI_MakeEdge(gp_Pnt(*a), gp_Pnt(*b)).Edge()
+
+    first = [edge((0, 0, 0), (10, 0, 0)), edge((10, 0, 0), (20, 0, 0))]
+    second = edge((0, 5, 0), (20, 5, 0))
+    section = general_fuse([*first, second], 1e-6).Shape()  # the two halves of the first share their vertex
+    joint = edge((2, 0, 0), (8, 0, 0))
+    chain = _chain_through(section, joint)
+    assert len(chain) == 2
+    assert all(abs(BRep_Tool.Pnt_s(TopoDS.Vertex(v)).Y()) < 1e-9 for e in chain for v in subshapes(e, TopAbs_VERTEX))

@@ -7,15 +7,16 @@ from OCP.BOPAlgo import BOPAlgo_Builder
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Section
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeVertex
+from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_INTERNAL
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_INTERNAL, TopAbs_VERTEX
 from OCP.TopExp import TopExp, TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
 
-from ..geom.booleans import general_fuse, split, within
-from ..geom.topology import IndexedShapeMap, diagonal, indexed_map
+from ..geom.booleans import check_area_kept, general_fuse, split, within
+from ..geom.topology import IndexedShapeMap, diagonal, indexed_map, subshapes
 from ..protocol.errors import KernelError
 from .fused_graph import describe
 
@@ -48,7 +49,10 @@ def fuse(patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool = False
         patch_of = input_patch
         face_map = indexed_map(fused, TopAbs_FACE)
     else:
-        builder = general_fuse([inputs.FindKey(i + 1) for i in range(inputs.Size())], fuzzy)
+        faces = [inputs.FindKey(i + 1) for i in range(inputs.Size())]
+        builder = general_fuse(faces, fuzzy)
+        # The patches' faces overlap only where fuzzy merges them: their pieces must cover them.
+        check_area_kept(builder, faces, fuzzy)
         fused = builder.Shape()
         face_map = indexed_map(fused, TopAbs_FACE)
         patch_of = _trace_patches(builder, inputs, input_patch, face_map)
@@ -87,14 +91,16 @@ def _internal_edge_lines(fused: TopoDS_Shape, face_map: IndexedShapeMap) -> list
             elif curve.GetType() == GeomAbs_Circle:
                 tools.extend(within(BRepBuilderAPI_MakeEdge(curve.Circle()).Edge(), face))
             elif stems.Contains(edge) and BRepAdaptor_Surface(face, False).GetType() != GeomAbs_Plane:
-                tools.extend(_stem_section(face, stems.FindFromKey(edge)))
+                tools.extend(_stem_section(face, edge, stems.FindFromKey(edge)))
     return tools
 
 
-def _stem_section(face: TopoDS_Face, sharing: Any) -> list[TopoDS_Shape]:
-    """The edges where the surface of the first face other than `face` among `sharing` (the faces on an
-    INTERNAL edge of `face`: the stem of the joint) crosses `face`, when that surface is a plane, cylinder or
-    cone (unbounded: the section runs through to the face's boundary); [] otherwise or when OCCT gives up."""
+def _stem_section(face: TopoDS_Face, edge: TopoDS_Edge, sharing: Any) -> list[TopoDS_Shape]:
+    """The edges where the surface of the first face other than `face` among `sharing` (the faces on the
+    INTERNAL `edge` of `face`: the stem of the joint) crosses `face`, when that surface is a plane, cylinder or
+    cone (unbounded: the section runs through to the face's boundary); [] otherwise or when OCCT gives up.
+    Only the chain of section edges through `edge` is kept: the stem's surface may cross the face elsewhere too
+    (a plane cuts a cylinder twice), where no stem stands, and a cut there would leave pieces hanging."""
     for other in sharing:
         if other.IsSame(face):
             continue
@@ -105,19 +111,41 @@ def _stem_section(face: TopoDS_Face, sharing: Any) -> list[TopoDS_Shape]:
         section.Build()
         if not section.IsDone():
             return []
-        edges = indexed_map(section.Shape(), TopAbs_EDGE)
-        return [edges.FindKey(k + 1) for k in range(edges.Size())]
+        return _chain_through(section.Shape(), edge)
     return []
+
+
+def _chain_through(section: TopoDS_Shape, edge: TopoDS_Edge) -> list[TopoDS_Shape]:
+    """The edges of `section` connected (through shared vertices) to the one nearest the middle of `edge`."""
+    edges = indexed_map(section, TopAbs_EDGE)
+    if edges.Size() == 0:
+        return []
+    curve = BRepAdaptor_Curve(edge)
+    middle = BRepBuilderAPI_MakeVertex(curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter()))).Vertex()
+    distances = [BRepExtrema_DistShapeShape(middle, edges.FindKey(k + 1)) for k in range(edges.Size())]
+    seed = min(range(edges.Size()), key=lambda k: distances[k].Value() if distances[k].IsDone() else float("inf"))
+    sharing = IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher()
+    TopExp.MapShapesAndAncestors_s(section, TopAbs_VERTEX, TopAbs_EDGE, sharing)
+    chain, todo = {seed}, [seed]
+    while todo:
+        current = edges.FindKey(todo.pop() + 1)
+        for vertex in subshapes(current, TopAbs_VERTEX):
+            for neighbour in sharing.FindFromKey(vertex):
+                k = edges.FindIndex(neighbour) - 1
+                if k >= 0 and k not in chain:
+                    chain.add(k)
+                    todo.append(k)
+    return [edges.FindKey(k + 1) for k in sorted(chain)]
 
 
 def _split_faces(
     fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int], tools: list[TopoDS_Shape], fuzzy: float
 ) -> tuple[TopoDS_Shape, list[int]]:
     """`fused` (its faces `face_map`) split by the edges `tools` lying on its faces, each piece keeping its face's
-    patch; `fused` itself when there are no tools or OCCT gives up (no worse than before)."""
+    patch; `fused` itself when there are no tools, or OCCT gives up or breaks a face (no worse than before)."""
     if not tools:
         return fused, patch_of
-    splitter = split(fused, tools, fuzzy)
+    splitter = split(fused, tools, fuzzy, keep_area=True)
     if splitter is None:
         return fused, patch_of
     result = splitter.Shape()

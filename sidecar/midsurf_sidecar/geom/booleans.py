@@ -3,20 +3,23 @@ tools, faces fused where they meet, an edge clipped to a face, a patch's faces m
 surface."""
 
 from OCP.BOPAlgo import BOPAlgo_Builder
-from OCP.BRepAlgoAPI import BRepAlgoAPI_Common, BRepAlgoAPI_Splitter
+from OCP.BRepAlgoAPI import BRepAlgoAPI_BuilderAlgo, BRepAlgoAPI_Common, BRepAlgoAPI_Splitter
 from OCP.collections import List_TopoDS_Shape
 from OCP.Message import Message_Fail
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
-from OCP.TopAbs import TopAbs_EDGE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopoDS import TopoDS_Shape
 
-from ..constants import CONFUSION, SAME_DOMAIN_ANGLE
+from ..constants import AREA_KEPT_SHARE, CONFUSION, SAME_DOMAIN_ANGLE
 from ..protocol.errors import KernelError, one_line
-from .topology import indexed_map
+from .topology import boundary_length, indexed_map, subshapes, surface_props
 
 
-def split(shape: TopoDS_Shape, tools: list[TopoDS_Shape], fuzzy: float) -> BRepAlgoAPI_Splitter | None:
-    """`shape` split by `tools` (non-destructive, fuzzy); None when OCCT gives up."""
+def split(
+    shape: TopoDS_Shape, tools: list[TopoDS_Shape], fuzzy: float, keep_area: bool = False
+) -> BRepAlgoAPI_Splitter | None:
+    """`shape` split by `tools` (non-destructive, fuzzy); None when OCCT gives up, or with `keep_area` when the
+    pieces do not cover the faces (check_area_kept)."""
     splitter = BRepAlgoAPI_Splitter()
     arguments, tool_list = List_TopoDS_Shape(), List_TopoDS_Shape()
     arguments.Append(shape)
@@ -27,7 +30,14 @@ def split(shape: TopoDS_Shape, tools: list[TopoDS_Shape], fuzzy: float) -> BRepA
     splitter.SetFuzzyValue(fuzzy)
     splitter.SetNonDestructive(True)
     splitter.Build()
-    return splitter if splitter.IsDone() else None
+    if not splitter.IsDone():
+        return None
+    if keep_area:
+        try:
+            check_area_kept(splitter, subshapes(shape, TopAbs_FACE), fuzzy)
+        except KernelError:
+            return None
+    return splitter
 
 
 def general_fuse(faces: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
@@ -43,6 +53,30 @@ def general_fuse(faces: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
     if builder.HasErrors():
         raise KernelError(f"BOPAlgo_Builder failed on {len(faces)} faces: {_alerts(builder)}")
     return builder
+
+
+def check_area_kept(builder: BRepAlgoAPI_BuilderAlgo | BOPAlgo_Builder, faces: list[TopoDS_Shape], fuzzy: float) -> None:
+    """Raises KernelError when the images of `faces` (their pieces in `builder`'s result) do not cover their area:
+    OCCT at times returns a split with loops inverted or faces dropped and no error, and patches built on that
+    lose material the later stages cannot see. Each face may differ from its pieces by what merging within the
+    fuzzy value moves (fuzzy x its boundary); beyond that, the faces together by AREA_KEPT_SHARE of their area."""
+    total, excess, worst = 0.0, 0.0, (0.0, -1, 0.0, 0.0)
+    for k, face in enumerate(faces):
+        area = surface_props(face).Mass()
+        total += abs(area)
+        images = builder.Modified(face)
+        if images.Size() == 0 and not builder.IsDeleted(face):
+            continue
+        pieces = sum(surface_props(image).Mass() for image in images)
+        beyond = abs(pieces - area) - fuzzy * boundary_length(face)
+        if beyond > 0.0:
+            excess += beyond
+            worst = max(worst, (beyond, k, pieces, area))
+    if excess > AREA_KEPT_SHARE * total:
+        _, k, pieces, area = worst
+        raise KernelError(
+            f"a split of {len(faces)} faces lost {excess:.3f} of {total:.3f} mm2 (face {k}: pieces cover {pieces:.3f} of {area:.3f})"
+        )
 
 
 def within(edge: TopoDS_Shape, face: TopoDS_Shape) -> list[TopoDS_Shape]:

@@ -34,6 +34,13 @@ def surface_props(shape: TopoDS_Shape) -> GProp_GProps:
     return props
 
 
+def boundary_length(shape: TopoDS_Shape) -> float:
+    """Length of the edges of `shape` (a face's: its boundary, seams counted once per use)."""
+    props = GProp_GProps()
+    BRepGProp.LinearProperties_s(shape, props)
+    return props.Mass()
+
+
 def subshapes(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> list[TopoDS_Shape]:
     """The sub-shapes of `kind` in explorer order, repeats included (an edge of two faces comes twice)."""
     found = []
