@@ -485,6 +485,17 @@ def tapered_plate() -> Fixture:
     return Fixture(single_solid(part), 100 * 60 * 3, 6)
 
 
+def plate_thick_pad() -> Fixture:
+    """Plate 240 x 140, 1.5 thick, with a 50 x 50 pad 2.5 high on its top (4 thick there): the class of a wall
+    thicker than the part's gauge, carrying too little of its area (7%) to set t_max, yet thin for its width (a
+    mounting pad, a thickened land). It is a wall all the same: the pad's mid-surface (z = 2) meets the plate's
+    (z = 0.75) at a step.
+    Faces: 11. Volume: 240 * 140 * 1.5 + 50 * 50 * 2.5.
+    """
+    part = box(0, 0, 0, 240, 140, 1.5) + box(95, 45, 1.5, 50, 50, 2.5)
+    return Fixture(single_solid(part), 240 * 140 * 1.5 + 50 * 50 * 2.5, 11)
+
+
 def spherical_cap() -> Fixture:
     """A spherical shell cap: the material between concentric spheres R 30 and R 28 centred at (30, 30, -10),
     above z = 0 (a dome, a lamp's shade): the class of a concentric sphere pair. Mid-surface: the sphere R 29.
@@ -588,6 +599,7 @@ PARTS: list[Callable[[], Fixture]] = [
     box_drafted,
     box_drafted_rounded,
     tapered_plate,
+    plate_thick_pad,
     spherical_cap,
     cone_boss,
     bspline_shell,

@@ -5,8 +5,11 @@ use serde::Serialize;
 /// Tolerances for one solid. Build with [`Tolerances::new`]; each field says why it has its value.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Tolerances {
-    /// Largest wall thickness that still pairs (user value or estimate).
+    /// Largest wall thickness that pairs whatever its width (user value or estimate: the part's gauges).
     pub t_max: f64,
+    /// Safety bound: a wall thicker than t_max still pairs, up to this, when it is thin for its width
+    /// (`pairing::criteria::wall_limit`). Equal to t_max when the user gives t_max (then a hard limit).
+    pub t_bound: f64,
     /// Largest draft angle of a wall's side (radians): a draft pair's normals differ by up to twice this.
     pub draft_max: f64,
     /// Two lengths closer than this are equal: 1e-6 of the part's diagonal, far above STEP's float noise and
@@ -38,6 +41,7 @@ impl Tolerances {
     pub fn new(diagonal: f64, t_max: f64, draft_max: f64) -> Tolerances {
         Tolerances {
             t_max,
+            t_bound: t_max,
             draft_max,
             point: diagonal * 1e-6,
             parallel_angle: 0.5_f64.to_radians(),

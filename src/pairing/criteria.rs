@@ -7,11 +7,24 @@ use super::overlap::{self, Overlap};
 use super::{Pair, PairKind, Rejection, Thickness};
 use crate::geom::angle_between;
 use crate::model::face_graph::{Convexity, Face, FaceGraph, FaceId, Surface};
+use super::wall_class::CHUNKY_SHARE;
 use crate::model::tolerance::Tolerances;
+
+/// The largest thickness a pair of skins `widths` wide may have and be a wall: t_max, or more, up to t_bound,
+/// when the wall is thin for its width, at most CHUNKY_SHARE of it (the ratio under which a solid is
+/// thin-walled). The width is the mean width 2 x area / perimeter of the narrower skin: all of a long band's
+/// width and half a square's or a disc's, so the rule is never more lenient than the solid's. Thicker pairs
+/// are blocks (a lug's sides, a pin's flats), not walls.
+pub fn wall_limit(tol: &Tolerances, widths: [f64; 2]) -> f64 {
+    let width = widths[0].min(widths[1]);
+    tol.t_max.max((CHUNKY_SHARE * width).min(tol.t_bound))
+}
 
 /// Tests whether faces `a` and `b` are the two skins of one wall.
 pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> Result<Pair, Rejection> {
     let (fa, fb) = (&graph.faces[a], &graph.faces[b]);
+    // Only the thickness limit depends on the pair (its width); every other tolerance stays the solid's.
+    let tol = &Tolerances { t_max: wall_limit(tol, [graph.face_width(a), graph.face_width(b)]), ..*tol };
     let (kind, thickness, overlap_area) = match (&fa.surface, &fb.surface) {
         (Surface::Plane { origin: pa, normal: na }, Surface::Plane { origin: pb, normal: nb }) => {
             planes(fa, fb, (*pa, *na), (*pb, *nb), tol)?

@@ -174,7 +174,12 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
         Some(t) => (t, "user (--t-max)".to_string()),
         None => (estimate.t_max, format!("estimated: {}", estimate.method)),
     };
-    let tolerances = Tolerances::new(graph.bbox.diagonal(), t_max, draft_max);
+    let mut tolerances = Tolerances::new(graph.bbox.diagonal(), t_max, draft_max);
+    if params.t_max.is_none() {
+        // The estimate is the part's gauges; a wall thicker than those is still a wall when it is thin for its
+        // width. A t_max the user gives is a hard limit.
+        tolerances.t_bound = estimate.search_bound.max(t_max);
+    }
     let limits = params.limits.resolve(t_max);
     let tested = pairing::test_candidates(graph, &tolerances);
     let first = pairing::assemble(graph, &tested, &vec![true; graph.faces.len()], &tolerances);
@@ -223,6 +228,7 @@ fn not_paired(graph: &FaceGraph, params: PairingParams, class: WallClass) -> Sol
         dominant: None,
         clusters: Vec::new(),
         method: format!("not paired, {}", class.describe()),
+        search_bound: t_max,
     };
     let pairable = vec![false; graph.faces.len()];
     SolidPairing {

@@ -24,6 +24,9 @@ pub struct TMaxEstimate {
     pub dominant: Option<f64>,
     pub clusters: Vec<ThicknessCluster>,
     pub method: String,
+    /// How thick a pair the search accepted (four times the 2V/A wall, at most the smallest extent): the safety
+    /// bound on walls thicker than t_max that are thin for their width.
+    pub search_bound: f64,
 }
 
 /// Relative width of a thickness cluster: gauges of one sheet differ by less than 2%.
@@ -58,6 +61,7 @@ pub fn estimate_t_max(graph: &FaceGraph, draft_max: f64) -> TMaxEstimate {
             dominant: None,
             clusters,
             method: format!("no parallel walls found: {DOMINANT_FACTOR} x 2V/A ({wall:.4})"),
+            search_bound: bound,
         };
     };
     let thickest = clusters
@@ -76,6 +80,7 @@ pub fn estimate_t_max(graph: &FaceGraph, draft_max: f64) -> TMaxEstimate {
             thickest
         ),
         clusters,
+        search_bound: bound,
     }
 }
 

@@ -233,7 +233,7 @@ pub type Tested = (FaceId, FaceId, Result<Pair, Rejection>);
 /// Every candidate pair of the solid tested, in candidate order. A verdict does not depend on which faces are
 /// pairable, so one list serves every pairing of the solid (before and after its features are left out).
 pub fn test_candidates(graph: &FaceGraph, tol: &Tolerances) -> Vec<Tested> {
-    candidates::candidate_pairs(graph, tol.t_max)
+    candidates::candidate_pairs(graph, tol.t_bound)
         .into_iter()
         .map(|(a, b)| (a, b, criteria::test_pair(graph, a, b, tol)))
         .collect()

@@ -82,6 +82,22 @@ fn distance_limit() {
 }
 
 #[test]
+fn a_wall_thicker_than_t_max_pairs_up_to_a_fifth_of_its_width() {
+    // The 60 x 40 slab's skins, each 200 long round (mean width 2 x 2400 / 200 = 24): a wall up to 4.8 thick,
+    // over t_max 3, when the solid's safety bound allows it; at t_max when t_max is the user's hard limit.
+    let slab = |z: f64| graph_with_lengths(slab_faces(z), &[(0, 1, Convexity::Convex, 200.0)]);
+    let bounded = Tolerances { t_bound: 10.0, ..tol() };
+    let p = criteria::test_pair(&slab(4.7), 0, 1, &bounded).unwrap();
+    assert!((p.thickness.mean - 4.7).abs() < 1e-9);
+    let err = criteria::test_pair(&slab(4.9), 0, 1, &bounded).unwrap_err();
+    assert!(matches!(err, Rejection::Distance { limit, .. } if (limit - 4.8).abs() < 1e-9), "{err:?}");
+    assert!(criteria::test_pair(&slab(4.7), 0, 1, &tol()).is_err());
+    // The bound holds whatever the width.
+    let tight = Tolerances { t_bound: 4.0, ..tol() };
+    assert!(criteria::test_pair(&slab(4.2), 0, 1, &tight).is_err());
+}
+
+#[test]
 fn faces_with_air_between_them_do_not_pair() {
     // Two walls of a slot: each outward normal points at the other face.
     let faces = vec![
