@@ -4,10 +4,10 @@
 use glam::DVec3;
 
 use super::overlap::{self, Overlap};
+use super::wall_class::CHUNKY_SHARE;
 use super::{Pair, PairKind, Rejection, Thickness};
 use crate::geom::angle_between;
 use crate::model::face_graph::{Convexity, Face, FaceGraph, FaceId, Surface};
-use super::wall_class::CHUNKY_SHARE;
 use crate::model::tolerance::Tolerances;
 
 /// The largest thickness a pair of skins `widths` wide may have and be a wall: t_max, or more, up to t_bound,
@@ -23,8 +23,11 @@ pub fn wall_limit(tol: &Tolerances, widths: [f64; 2]) -> f64 {
 /// Tests whether faces `a` and `b` are the two skins of one wall.
 pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> Result<Pair, Rejection> {
     let (fa, fb) = (&graph.faces[a], &graph.faces[b]);
-    // Only the thickness limit depends on the pair (its width); every other tolerance stays the solid's.
-    let tol = &Tolerances { t_max: wall_limit(tol, [graph.face_width(a), graph.face_width(b)]), ..*tol };
+    // Only the thickness limit depends on the pair (its width); every other tolerance stays the solid's. With
+    // no room above t_max (a user's hard limit) the widths need not be measured.
+    let limit =
+        if tol.t_bound > tol.t_max { wall_limit(tol, [graph.face_width(a), graph.face_width(b)]) } else { tol.t_max };
+    let tol = &Tolerances { t_max: limit, ..*tol };
     let (kind, thickness, overlap_area) = match (&fa.surface, &fb.surface) {
         (Surface::Plane { origin: pa, normal: na }, Surface::Plane { origin: pb, normal: nb }) => {
             planes(fa, fb, (*pa, *na), (*pb, *nb), tol)?

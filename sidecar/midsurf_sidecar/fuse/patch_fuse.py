@@ -11,12 +11,11 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeVerte
 from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_INTERNAL, TopAbs_VERTEX
-from OCP.TopExp import TopExp, TopExp_Explorer
+from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
-from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
 
 from ..geom.booleans import check_area_kept, general_fuse, split, within
-from ..geom.topology import IndexedShapeMap, diagonal, indexed_map, subshapes
+from ..geom.topology import IndexedShapeMap, ancestors, diagonal, indexed_map, subshapes
 from ..protocol.errors import KernelError
 from .fused_graph import describe
 
@@ -72,8 +71,7 @@ def _internal_edge_lines(fused: TopoDS_Shape, face_map: IndexedShapeMap) -> list
     cylinder or cone (a flat rib on a freeform shell): the line and the circle are that section's simplest
     cases. Other curves stay internal (on a planar face, a section of a slanted stem's cylinder would cut a
     disc the stem's foot only touches). `fused`: the fused shape, `face_map` its faces."""
-    stems = IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher()
-    TopExp.MapShapesAndAncestors_s(fused, TopAbs_EDGE, TopAbs_FACE, stems)
+    stems = ancestors(fused, TopAbs_EDGE, TopAbs_FACE)
     tools = []
     for i in range(face_map.Size()):
         face = TopoDS.Face(face_map.FindKey(i + 1))
@@ -124,8 +122,7 @@ def _chain_through(section: TopoDS_Shape, edge: TopoDS_Edge) -> list[TopoDS_Shap
     middle = BRepBuilderAPI_MakeVertex(curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter()))).Vertex()
     distances = [BRepExtrema_DistShapeShape(middle, edges.FindKey(k + 1)) for k in range(edges.Size())]
     seed = min(range(edges.Size()), key=lambda k: distances[k].Value() if distances[k].IsDone() else float("inf"))
-    sharing = IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher()
-    TopExp.MapShapesAndAncestors_s(section, TopAbs_VERTEX, TopAbs_EDGE, sharing)
+    sharing = ancestors(section, TopAbs_VERTEX, TopAbs_EDGE)
     chain, todo = {seed}, [seed]
     while todo:
         current = edges.FindKey(todo.pop() + 1)

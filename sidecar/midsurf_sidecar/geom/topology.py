@@ -7,6 +7,7 @@ from OCP.BRep import BRep_Tool
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
+from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as AncestorMap
 from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedShapeMap
 from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE, TopAbs_ShapeEnum
@@ -19,6 +20,14 @@ def indexed_map(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> IndexedShapeMap:
     shape_map = IndexedShapeMap()
     TopExp.MapShapes_s(shape, kind, shape_map)
     return shape_map
+
+
+def ancestors(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum, owner: TopAbs_ShapeEnum) -> AncestorMap:
+    """Each sub-shape of `kind` in `shape` (TopExp order) with the sub-shapes of kind `owner` that hold it (an
+    edge's faces, a vertex's edges)."""
+    found = AncestorMap()
+    TopExp.MapShapesAndAncestors_s(shape, kind, owner, found)
+    return found
 
 
 def volume(shape: TopoDS_Shape) -> float:

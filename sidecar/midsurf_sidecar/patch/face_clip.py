@@ -18,8 +18,6 @@ from OCP.BRepGProp import BRepGProp
 from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
 from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN
-from OCP.TopExp import TopExp
-from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
@@ -27,7 +25,7 @@ from ..constants import CONFUSION, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AX
 from ..geom.booleans import split, unify
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import interior_point
-from ..geom.topology import diagonal, indexed_map, surface_props
+from ..geom.topology import ancestors, diagonal, indexed_map, surface_props
 
 
 def clip_to_partners(
@@ -131,8 +129,7 @@ def _point(piece: TopoDS_Face):
 
 def _neighbours(shape: TopoDS_Shape, pieces) -> list[set[int]]:
     """Per piece (0-based, `pieces` order), the other pieces sharing an edge with it."""
-    edge_faces = IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher()
-    TopExp.MapShapesAndAncestors_s(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces)
+    edge_faces = ancestors(shape, TopAbs_EDGE, TopAbs_FACE)
     out: list[set[int]] = [set() for _ in range(pieces.Size())]
     for e in range(1, edge_faces.Size() + 1):
         owners = [pieces.FindIndex(f) - 1 for f in edge_faces.FindFromIndex(e)]

@@ -10,14 +10,13 @@ from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_VERTEX
-from OCP.TopExp import TopExp, TopExp_Explorer
+from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape, TopoDS_Shell
-from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher
 from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
-from ..geom.topology import IndexedShapeMap, indexed_map
+from ..geom.topology import IndexedShapeMap, ancestors, indexed_map
 from ..protocol.errors import KernelError
 
 
@@ -73,8 +72,7 @@ def make_shells(
 def _edge_uses(compound: TopoDS_Compound) -> dict[str, int]:
     """Edges of the shells written used by one face (free) and by three or more (non-manifold), a seam counted
     once per face: the counts a reader of the file finds, after faces closed on themselves were split."""
-    owners = IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher()
-    TopExp.MapShapesAndAncestors_s(compound, TopAbs_EDGE, TopAbs_FACE, owners)
+    owners = ancestors(compound, TopAbs_EDGE, TopAbs_FACE)
     free = nonmanifold = 0
     for k in range(1, owners.Size() + 1):
         if BRep_Tool.Degenerated_s(TopoDS.Edge(owners.FindKey(k))):
