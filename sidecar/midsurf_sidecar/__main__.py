@@ -28,5 +28,17 @@ def main() -> int:
     return 0
 
 
+def leave(code: int) -> None:
+    """Exits without the interpreter's teardown.
+
+    Every reply is flushed and every output file was written and renamed by its op, so nothing is lost; the
+    teardown would only free OCCT's objects one by one (about 0.3 s, a third of the I/O floor of a small part),
+    which the operating system does at once.
+    """
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    leave(main())
