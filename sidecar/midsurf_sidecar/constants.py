@@ -117,6 +117,13 @@ GLTF_INPUT_LENGTH_UNIT = 0.001
 # face tolerances if that is more, so the classifier sees the step whatever the face's size and tolerance.
 SIDE_STEP_RATIO = 1e-4
 SIDE_STEP_TOLERANCES = 20.0
+# A ray meets an offset of a spline surface (a mid-patch of a freeform wall) about 30 times faster on a B-spline
+# approximation of it: the approximation (this share of the probe's reach) only locates the meetings, which Newton's
+# method then settles on the exact surface to RAY_MEET_RESIDUAL (mm) within RAY_MEET_ITERATIONS steps (else the
+# exact surface is intersected directly).
+RAY_APPROX_RATIO = 1e-3
+RAY_MEET_RESIDUAL = 1e-9
+RAY_MEET_ITERATIONS = 20
 # Outward directions (unit vectors) and lengths equal to this (relative) share make one straight sweep; also how far
 # an edge's ends may differ in v (relative to the sweep, at least 1 mm) and still be a circle of its cylinder.
 SWEEP_PARALLEL = 1e-6

@@ -3,7 +3,8 @@
 import pytest
 from OCP.BRep import BRep_Tool
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
-from OCP.Geom import Geom_BSplineSurface, Geom_Line, Geom_SurfaceOfLinearExtrusion
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+from OCP.Geom import Geom_BSplineSurface, Geom_Line, Geom_OffsetSurface, Geom_SurfaceOfLinearExtrusion
 from OCP.GeomAPI import GeomAPI_IntCS
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
@@ -28,7 +29,7 @@ def test_a_ray_meets_a_swept_spline_strip_as_its_extrusion_surface_says():
     surface = BRep_Tool.Surface_s(face)
     assert isinstance(surface, Geom_SurfaceOfLinearExtrusion)
     targets = TargetFaces({0: face}, reach=30.0)
-    assert isinstance(targets.surfaces[0], Geom_BSplineSurface)
+    assert isinstance(targets.surfaces[0].exact, Geom_BSplineSurface)
     for x, z in [(5, 1), (20, 5), (35, 9.5), (12, 12)]:
         origin, direction = (x, -20.0, z), (0.0, 1.0, 0.0)
         hits = targets.hits(origin, direction, 30.0, [0])
@@ -37,3 +38,39 @@ def test_a_ray_meets_a_swept_spline_strip_as_its_extrusion_surface_says():
         assert [h["distance"] for h in hits] == pytest.approx(expected, abs=1e-7)
         # Beyond the strip's top (z = 12) the meeting is on the support surface, 2 mm from the face.
         assert hits[0]["gap"] == pytest.approx(max(0.0, z - 10.0), abs=1e-6)
+
+
+def offset_spline_face():
+    """A doubly curved bicubic spline sheet (60 x 40, bulging 6 mm) offset by 1.5 mm: a freeform mid-patch."""
+    from build123d import Face
+
+    grid = [[(x, y, 6.0 * ((x / 60.0) * (1 - x / 60.0) + 0.5 * (y / 40.0) ** 2)) for x in range(0, 61, 10)] for y in range(0, 41, 10)]
+    spline = Face.make_surface_from_array_of_points(grid).wrapped
+    basis = BRep_Tool.Surface_s(spline)
+    assert isinstance(basis, Geom_BSplineSurface)
+    return BRepBuilderAPI_MakeFace(Geom_OffsetSurface(basis, 1.5), 1e-7).Face()
+
+
+def test_rays_meet_an_offset_spline_where_the_exact_offset_surface_says():
+    face = offset_spline_face()
+    exact = BRep_Tool.Surface_s(face)
+    assert isinstance(exact, Geom_OffsetSurface)
+    targets = TargetFaces({0: face}, reach=20.0)
+    assert targets.surfaces[0].locator is not None
+    met = 0
+    for x, y, dz in [(5, 5, 1.0), (30, 20, -1.0), (55, 35, 1.0), (20, 38, -1.0)]:
+        origin = (float(x), float(y), 10.0 if dz < 0 else -8.0)
+        direction = (0.3, -0.1, dz)
+        scale_ = sum(c * c for c in direction) ** 0.5
+        direction = tuple(c / scale_ for c in direction)
+        hits = targets.hits(origin, direction, 20.0, [0])
+        meet = GeomAPI_IntCS(Geom_Line(gp_Lin(gp_Pnt(*origin), gp_Dir(*direction))), exact)
+        expected = sorted(
+            d for d in (
+                sum((a - b) * c for a, b, c in zip((meet.Point(k).X(), meet.Point(k).Y(), meet.Point(k).Z()), origin, direction))
+                for k in range(1, meet.NbPoints() + 1)
+            ) if 0.0 < d <= 20.0
+        )
+        assert [h["distance"] for h in hits] == pytest.approx(expected, abs=1e-8)
+        met += len(hits)
+    assert met >= 4

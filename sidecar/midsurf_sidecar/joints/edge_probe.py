@@ -18,15 +18,30 @@ from OCP.BRepClass import BRepClass_FaceClassifier
 from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.Bnd import Bnd_Box
 from OCP.BRepTools import BRepTools
-from OCP.Geom import Geom_Line, Geom_RectangularTrimmedSurface, Geom_Surface, Geom_SurfaceOfLinearExtrusion
-from OCP.GeomConvert import GeomConvert
+from OCP.Geom import (
+    Geom_BSplineSurface,
+    Geom_Line,
+    Geom_OffsetSurface,
+    Geom_RectangularTrimmedSurface,
+    Geom_Surface,
+    Geom_SurfaceOfLinearExtrusion,
+)
+from OCP.GeomAbs import GeomAbs_C1
+from OCP.GeomConvert import GeomConvert, GeomConvert_ApproxSurface
 from OCP.GeomAPI import GeomAPI_IntCS
 from OCP.gp import gp_Dir, gp_Lin, gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_IN, TopAbs_OUT, TopAbs_REVERSED
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
-from ..constants import SIDE_STEP_RATIO, SIDE_STEP_TOLERANCES
+from ..constants import (
+    RAY_APPROX_RATIO,
+    RAY_MEET_ITERATIONS,
+    RAY_MEET_RESIDUAL,
+    SIDE_STEP_RATIO,
+    SIDE_STEP_TOLERANCES,
+    SINGULAR_METRIC,
+)
 from ..geom.topology import diagonal
 from ..geom.vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 from ..protocol.errors import BadArgs, KernelError
@@ -98,20 +113,61 @@ def _runs_backwards(face: TopoDS_Face, samples: list[EdgeSample]) -> bool:
     return state_in == TopAbs_OUT and state_out == TopAbs_IN
 
 
-def _intersectable(face: TopoDS_Face, reach: float) -> Geom_Surface:
-    """The face's support surface in the form rays meet fastest, over the face grown by `reach`.
+class RaySurface:
+    """A target face's support surface, in the form rays meet fastest (see `meetings`)."""
 
-    A surface of linear extrusion of a spline (a strip grown from a curved patch's edge) costs GeomAPI_IntCS
-    about 2 ms a ray, eight times its exact B-spline form (a spline curve swept along a line is a spline of
-    degree 1 across), so it is converted once. Meetings beyond `reach` of the face are of no use to the joints.
-    """
-    surface = BRep_Tool.Surface_s(face)
-    if not isinstance(surface, Geom_SurfaceOfLinearExtrusion):
-        return surface
-    curve = surface.BasisCurve()
-    _, _, v0, v1 = BRepTools.UVBounds_s(face)
-    bounded = Geom_RectangularTrimmedSurface(surface, curve.FirstParameter(), curve.LastParameter(), v0 - reach, v1 + reach)
-    return GeomConvert.SurfaceToBSplineSurface_s(bounded)
+    def __init__(self, face: TopoDS_Face, reach: float) -> None:
+        self.exact = BRep_Tool.Surface_s(face)
+        self.locator: Geom_Surface | None = None
+        if isinstance(self.exact, Geom_SurfaceOfLinearExtrusion):
+            # A spline swept along a line (a strip grown from a curved patch's edge) is exactly a spline of degree
+            # 1 across, which GeomAPI_IntCS meets eight times faster. Meetings beyond `reach` of the face are of
+            # no use to the joints.
+            curve = self.exact.BasisCurve()
+            _, _, v0, v1 = BRepTools.UVBounds_s(face)
+            bounded = Geom_RectangularTrimmedSurface(
+                self.exact, curve.FirstParameter(), curve.LastParameter(), v0 - reach, v1 + reach
+            )
+            self.exact = GeomConvert.SurfaceToBSplineSurface_s(bounded)
+        elif isinstance(self.exact, Geom_OffsetSurface) and isinstance(self.exact.BasisSurface(), Geom_BSplineSurface):
+            approx = GeomConvert_ApproxSurface(
+                self.exact, RAY_APPROX_RATIO * reach, GeomAbs_C1, GeomAbs_C1, 9, 9, 100, 1
+            )
+            if approx.IsDone() and approx.HasResult():
+                self.locator = approx.Surface()
+
+    def meetings(self, line: Geom_Line, origin: Vec, direction: Vec) -> list[Vec]:
+        """Points where the ray's line meets the surface: on the locator (same parameters as the exact surface),
+        each settled on the exact surface; on the exact surface alone if there is no locator or one fails."""
+        if self.locator is not None:
+            meet = GeomAPI_IntCS(line, self.locator)
+            if meet.IsDone():
+                settled = [self._settle(*meet.Parameters(k), origin, direction) for k in range(1, meet.NbPoints() + 1)]
+                if all(p is not None for p in settled):
+                    return settled
+        meet = GeomAPI_IntCS(line, self.exact)
+        if not meet.IsDone():
+            return []
+        return [xyz(meet.Point(k)) for k in range(1, meet.NbPoints() + 1)]
+
+    def _settle(self, u: float, v: float, w: float, origin: Vec, direction: Vec) -> Vec | None:
+        """Newton's method on S(u, v) - (origin + w direction) = 0 from a located meeting."""
+        point, su, sv = gp_Pnt(), gp_Vec(), gp_Vec()
+        for _ in range(RAY_MEET_ITERATIONS):
+            self.exact.D1(u, v, point, su, sv)
+            residual = sub(xyz(point), add_scaled(origin, direction, w))
+            if norm(residual) <= RAY_MEET_RESIDUAL:
+                return xyz(point)
+            a, b, c = xyz(su), xyz(sv), scale(direction, -1.0)
+            det = dot(a, cross(b, c))
+            if abs(det) <= SINGULAR_METRIC:
+                return None
+            # Cramer's rule for a du + b dv + c dw = -residual.
+            rhs = scale(residual, -1.0)
+            u += dot(rhs, cross(b, c)) / det
+            v += dot(a, cross(rhs, c)) / det
+            w += dot(a, cross(b, rhs)) / det
+        return None
 
 
 class TargetFaces:
@@ -119,7 +175,7 @@ class TargetFaces:
 
     def __init__(self, faces: dict[int, TopoDS_Face], reach: float) -> None:
         self.faces = faces
-        self.surfaces = {i: _intersectable(f, reach) for i, f in faces.items()}
+        self.surfaces = {i: RaySurface(f, reach) for i, f in faces.items()}
         # Boxes grown by the reach once, not per ray.
         self.boxes = {}
         for i, f in faces.items():
@@ -149,11 +205,7 @@ class TargetFaces:
             face = self.faces[i]
             if self.boxes[i].IsOut(ray_box):
                 continue
-            meet = GeomAPI_IntCS(line, self.surfaces[i])
-            if not meet.IsDone():
-                continue
-            for k in range(1, meet.NbPoints() + 1):
-                p = xyz(meet.Point(k))
+            for p in self.surfaces[i].meetings(line, origin, direction):
                 distance = dot(sub(p, origin), direction)
                 if 0.0 < distance <= reach:
                     found.append({"face": i, "distance": distance, "gap": self._gap(face, p)})
