@@ -1,7 +1,8 @@
 """Speed at scale (issue 26): `midsurf run` on the corpus and on generated families, against the I/O floor.
 
 Usage: .venv/bin/python scripts/bench_scale.py [--corpus DIR] [--holes 100,400,...] [--ribs 10,20,...]
-                                               [--skip-corpus] [--skip-family] [--midsurf BIN]   (run by scripts/bench)
+                                               [--skip-corpus] [--skip-family] [--midsurf BIN] [--keep DIR]
+                                               (run by scripts/bench)
 
 Per part: wall time, CPU time (user + system, the sidecar's included: steadier than wall time on a shared
 machine) and peak memory of `midsurf run` (/usr/bin/time), its load and stitch stages
@@ -138,9 +139,12 @@ def main() -> int:
     parser.add_argument("--skip-corpus", action="store_true")
     parser.add_argument("--skip-family", action="store_true")
     parser.add_argument("--midsurf", default=str(REPO / "target/release/midsurf"))
+    parser.add_argument("--keep", type=Path, help="write the outputs and reports here (e.g. for the judge's --dirs)")
     args = parser.parse_args()
     CACHE.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix="midsurf-bench-"))
+    if args.keep:
+        args.keep.mkdir(parents=True, exist_ok=True)
+    work = args.keep or Path(tempfile.mkdtemp(prefix="midsurf-bench-"))
     header = f"{'part':<44} {'faces':>6} {'exit':>4} {'time_s':>8} {'cpu_s':>7} {'floor_s':>7} {'ratio':>6} {'rss_MB':>8} " \
              f"{'load_s':>7} {'stitch_s':>8}"
     if not args.skip_corpus and args.corpus.is_dir():

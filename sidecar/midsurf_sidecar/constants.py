@@ -124,6 +124,10 @@ SIDE_STEP_TOLERANCES = 20.0
 RAY_APPROX_RATIO = 1e-3
 RAY_MEET_RESIDUAL = 1e-9
 RAY_MEET_ITERATIONS = 20
+# A ray misses a spline when its poles all lie on one side of one of this many planes through the ray (evenly
+# turned about it), by more than HULL_MARGIN (mm: round-off of the intersector; the locator's tolerance is added).
+HULL_DIRECTIONS = 8
+HULL_MARGIN = 1e-6
 # Outward directions (unit vectors) and lengths equal to this (relative) share make one straight sweep; also how far
 # an edge's ends may differ in v (relative to the sweep, at least 1 mm) and still be a circle of its cylinder.
 SWEEP_PARALLEL = 1e-6

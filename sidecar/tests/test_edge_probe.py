@@ -74,3 +74,38 @@ def test_rays_meet_an_offset_spline_where_the_exact_offset_surface_says():
         assert [h["distance"] for h in hits] == pytest.approx(expected, abs=1e-8)
         met += len(hits)
     assert met >= 4
+
+
+def test_a_ray_the_pole_hull_rules_out_meets_nothing_on_the_exact_surface():
+    """Random rays at the spline sheet: every one the hull test skips really misses within its reach, and the
+    test skips most of those that pass beside the sheet."""
+    import random
+
+    from midsurf_sidecar.joints.edge_probe import RaySurface
+
+    face = swept_spline_strip()
+    ray_surface = RaySurface(face, reach=30.0)
+    assert ray_surface.hull is not None
+    rng = random.Random(7)
+    skipped = beside = 0
+    for _ in range(300):
+        origin = (rng.uniform(-20, 60), rng.uniform(-20, 20), rng.uniform(-10, 20))
+        direction = [rng.uniform(-1, 1) for _ in range(3)]
+        length = sum(c * c for c in direction) ** 0.5
+        direction = tuple(c / length for c in direction)
+        line = Geom_Line(gp_Lin(gp_Pnt(*origin), gp_Dir(*direction)))
+        meet = GeomAPI_IntCS(line, ray_surface.exact)
+        within = [
+            k for k in range(1, meet.NbPoints() + 1)
+            if 0.0 < sum((a - b) * c for a, b, c in zip(xyz_of(meet.Point(k)), origin, direction)) <= 30.0
+        ]
+        if ray_surface.hull.misses(origin, direction, 30.0):
+            skipped += 1
+            assert not within
+        elif not within:
+            beside += 1
+    assert skipped > beside
+
+
+def xyz_of(p):
+    return (p.X(), p.Y(), p.Z())

@@ -35,6 +35,8 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
 from ..constants import (
+    HULL_DIRECTIONS,
+    HULL_MARGIN,
     RAY_APPROX_RATIO,
     RAY_MEET_ITERATIONS,
     RAY_MEET_RESIDUAL,
@@ -113,6 +115,39 @@ def _runs_backwards(face: TopoDS_Face, samples: list[EdgeSample]) -> bool:
     return state_in == TopAbs_OUT and state_out == TopAbs_IN
 
 
+class PoleHull:
+    """A B-spline surface lies in the convex hull of its poles (positive weights), so a ray segment that keeps
+    clear of the hull meets nothing. GeomAPI_IntCS takes 0.1 to 1 ms to find that a ray misses a spline; most rays
+    of an edge miss most of the splines near it. The test: the poles all before the ray's start or beyond its
+    reach, or all on one side of one of HULL_DIRECTIONS planes through the ray (a polygon around the ray)."""
+
+    def __init__(self, surface: Geom_BSplineSurface, margin: float) -> None:
+        import numpy  # only for parts with splines: it costs a small part's start-up 0.1 s
+
+        self.np = numpy
+        poles = [
+            xyz(surface.Pole(i, j)) for i in range(1, surface.NbUPoles() + 1) for j in range(1, surface.NbVPoles() + 1)
+        ]
+        self.poles = numpy.array(poles)
+        angles = numpy.arange(HULL_DIRECTIONS) * (numpy.pi / HULL_DIRECTIONS)
+        self.around = numpy.stack([numpy.cos(angles), numpy.sin(angles)])
+        self.margin = margin
+
+    def misses(self, origin: Vec, direction: Vec, reach: float) -> bool:
+        np = self.np
+        relative = self.poles - np.array(origin)
+        d = np.array(direction)
+        along = relative @ d
+        if along.max() < -self.margin or along.min() > reach + self.margin:
+            return True
+        helper = np.array([1.0, 0.0, 0.0]) if abs(d[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+        e1 = np.cross(d, helper)
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(d, e1)
+        across = (relative @ np.stack([e1, e2], axis=1)) @ self.around
+        return bool((across.min(axis=0) > self.margin).any() or (across.max(axis=0) < -self.margin).any())
+
+
 class RaySurface:
     """A target face's support surface, in the form rays meet fastest (see `meetings`)."""
 
@@ -135,10 +170,20 @@ class RaySurface:
             )
             if approx.IsDone() and approx.HasResult():
                 self.locator = approx.Surface()
+        spline = self.locator or self.exact
+        self.hull: PoleHull | None = None
+        if isinstance(spline, Geom_BSplineSurface):
+            # The exact surface lies within twice the approximation's tolerance of its locator.
+            margin = HULL_MARGIN + (2.0 * RAY_APPROX_RATIO * reach if self.locator is not None else 0.0)
+            self.hull = PoleHull(spline, margin)
 
-    def meetings(self, line: Geom_Line, origin: Vec, direction: Vec) -> list[Vec]:
-        """Points where the ray's line meets the surface: on the locator (same parameters as the exact surface),
-        each settled on the exact surface; on the exact surface alone if there is no locator or one fails."""
+    def meetings(self, line: Geom_Line, origin: Vec, direction: Vec, reach: float) -> list[Vec]:
+        """Points where the ray's line meets the surface, all of them or at least those within (0, reach] along
+        the ray: none when the ray keeps clear of the spline's pole hull; on the locator (same parameters as the
+        exact surface), each settled on the exact surface; on the exact surface alone if there is no locator or
+        one fails."""
+        if self.hull is not None and self.hull.misses(origin, direction, reach):
+            return []
         if self.locator is not None:
             meet = GeomAPI_IntCS(line, self.locator)
             if meet.IsDone():
@@ -205,7 +250,7 @@ class TargetFaces:
             face = self.faces[i]
             if self.boxes[i].IsOut(ray_box):
                 continue
-            for p in self.surfaces[i].meetings(line, origin, direction):
+            for p in self.surfaces[i].meetings(line, origin, direction, reach):
                 distance = dot(sub(p, origin), direction)
                 if 0.0 < distance <= reach:
                     found.append({"face": i, "distance": distance, "gap": self._gap(face, p)})
