@@ -62,7 +62,11 @@ class Session:
         if op not in self.ops:
             raise OpError(f"unknown op {op!r}; known: hello, shutdown, {', '.join(self.ops)}", "unknown_op")
         started = time.perf_counter()
-        result = _profiled(self.ops[op], self.store, args)
+        try:
+            result = _profiled(self.ops[op], self.store, args)
+        except Exception:
+            _trace(f"{op} failed", time.perf_counter() - started)
+            raise
         _trace(op, time.perf_counter() - started)
         _test_stall(op)
         _test_crash(op)
@@ -84,7 +88,8 @@ class Session:
         return {"protocol": PROTOCOL_VERSION, "python": platform.python_version(), "occt": ops.occt_version()}
 
 
-# Profiling (docs/benchmarks.md): MIDSURF_TRACE_OPS=FILE appends "op seconds" per request to FILE.
+# Profiling (docs/benchmarks.md): MIDSURF_TRACE_OPS=FILE appends "op seconds" per request to FILE ("op failed
+# seconds" for one that raised).
 TRACE_VAR = "MIDSURF_TRACE_OPS"
 
 
@@ -129,36 +134,6 @@ def _test_stall(op: str) -> None:
     with open(marker, "w", encoding="utf-8") as f:
         f.write(str(os.getpid()))
     time.sleep(TEST_STALL_SECONDS)
-
-
-# Profiling (docs/benchmarks.md): MIDSURF_TRACE_OPS=FILE appends "op seconds" per request to FILE.
-TRACE_VAR = "MIDSURF_TRACE_OPS"
-
-
-# MIDSURF_PROFILE_OPS=FILE profiles every op (cProfile) and writes the stats so far to FILE after each one.
-PROFILE_VAR = "MIDSURF_PROFILE_OPS"
-_profile: Any = None
-
-
-def _profiled(run: Any, store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
-    global _profile
-    path = os.environ.get(PROFILE_VAR)
-    if not path:
-        return run(store, args)
-    import cProfile
-
-    _profile = _profile or cProfile.Profile()
-    try:
-        return _profile.runcall(run, store, args)
-    finally:
-        _profile.dump_stats(path)
-
-
-def _trace(op: str, seconds: float) -> None:
-    path = os.environ.get(TRACE_VAR)
-    if path:
-        with open(path, "a", encoding="utf-8") as trace:
-            trace.write(f"{op} {seconds:.6f}\n")
 
 
 # Fault injection for tests only: MIDSURF_TEST_CRASH="OP:MARKER" makes the sidecar abort (SIGABRT, a crash of
