@@ -509,6 +509,22 @@ def spherical_cap() -> Fixture:
     return Fixture(single_solid(part), volume, 3)
 
 
+def tube_oblique_end() -> Fixture:
+    """A tube (outer R 20, inner R 18: wall 2) standing on z = 0 on the vertical axis through (20, 20), its top cut
+    by a plane tilted 30 degrees about x through (20, 20, 40) (a duct's mitred end, a tube cut to fit): the class
+    of a curved wall whose rim is oblique to the wall. Offset by half the wall, the outer skin's top edge lies
+    above the cut on one side (a crescent out of the material, up to 0.58 high) and below it on the other (short
+    of the rim by as much). Mid-surface: the cylinder R 19 from z = 0 up to the cut plane.
+    Faces: 4 (outer and inner cylinder, the bottom annulus, the top elliptic annulus).
+    Volume: the annulus' area times the mean height, 40 (the cut is linear across the axisymmetric section).
+    """
+    tube = cylinder_z(20, 20, 0, 20, 80) - cylinder_z(20, 20, 0, 18, 80)
+    cut = Plane(origin=(20, 20, 40), z_dir=(0, -math.sin(math.radians(30)), math.cos(math.radians(30))))
+    below = Solid.make_box(200, 200, 200, cut.move(Location((-100, -100, -200))))
+    part = single_solid(tube & below)
+    return Fixture(part, math.pi * (20**2 - 18**2) * 40, 4)
+
+
 def frustum(radius_bottom: float, radius_top: float, height: float) -> float:
     return math.pi * height / 3 * (radius_bottom**2 + radius_bottom * radius_top + radius_top**2)
 
@@ -604,6 +620,7 @@ PARTS: list[Callable[[], Fixture]] = [
     cone_boss,
     bspline_shell,
     bspline_shell_rib,
+    tube_oblique_end,
 ]
 
 

@@ -136,6 +136,9 @@ STRIP_RELATIVE_TOLERANCE = 1e-6
 # A strip on a cylindrical patch keeps to the cylinder when the samples grow along its axis: most within this
 # angle (degrees) of it, none against it.
 AXIAL_DEG = 45.0
+# Points inside each edge of a curved patch face at which its boundary is tested for leaving the solid
+# (patch.face_clip.within_solid: a sign the fuzzy split missed an overshoot).
+BOUNDARY_SAMPLES = 5
 # Points along an edge's pcurve to find its extent in the cylinder's parameters.
 PCURVE_SAMPLES = 64
 

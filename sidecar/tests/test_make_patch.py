@@ -508,3 +508,29 @@ def test_a_dome_patch_ends_on_the_rim_plane_not_past_it(client, tmp_path):
     assert lowest == pytest.approx(10.0, abs=1e-6)
     # The zone of the mid sphere R 29 above z = 10: 2 pi R h.
     assert ok["faces"][0]["area"] == pytest.approx(2 * math.pi * 29 * (29 - 10), rel=1e-6)
+
+
+def test_a_tube_patch_ends_on_an_oblique_rim_plane_not_past_it(client):
+    """tube_oblique_end: a tube R 20 / R 18 cut by a plane tilted 30 degrees. The outer cylinder offset inwards by
+    1 keeps its rim's heights, so on one side the rim lies up to tan 30 = 0.58 above the cut (out of the
+    material; a crescent reaching 0.37 past the cut on average, over the rim tolerance of 0.2), on the other as
+    far below it. Cut to the solid, the patch reaches the plane nowhere past it; the short side is left to the
+    stitching's growth to the rim."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.TopAbs import TopAbs_EDGE
+
+    handle = load_fixture(client, "tube_oblique_end.step")
+    outer = face_with(graph(client, handle), "cylinder", lambda f: f["surface"]["radius"] > 19)["id"]
+    ok = client.ok("make_patch", handle=handle, faces=[outer], offset=-1.0)
+    normal = (0.0, -math.sin(math.radians(30)), math.cos(math.radians(30)))
+    heights = []
+    for face in patch_faces(client, ok["handle"]):
+        edges = indexed_map(face, TopAbs_EDGE)
+        for i in range(edges.Size()):
+            curve = BRepAdaptor_Curve(TopoDS.Edge(edges.FindKey(i + 1)))
+            for k in range(21):
+                p = curve.Value(curve.FirstParameter() + (curve.LastParameter() - curve.FirstParameter()) * k / 20)
+                heights.append(dot((p.X() - 20.0, p.Y() - 20.0, p.Z() - 40.0), normal))
+    assert max(heights) == pytest.approx(0.0, abs=1e-5)
+    assert min(h for h in heights if h > -30) < -0.5  # the short side stays short here
+

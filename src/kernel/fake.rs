@@ -30,6 +30,14 @@ impl Kernel for FakeKernel {
     fn call<R: DeserializeOwned>(&mut self, request: &Request) -> Result<R, SidecarError> {
         self.requests.push(request.clone());
         let reply = self.replies.pop_front().unwrap_or_else(|| panic!("no scripted reply for '{}'", request.op()));
+        // A scripted failure of the op: {"error": {"code": .., "message": ..}}.
+        if let Some(error) = reply.get("error").filter(|_| reply.as_object().is_some_and(|o| o.len() == 1)) {
+            return Err(SidecarError::Op {
+                op: request.op().to_string(),
+                code: error["code"].as_str().unwrap_or("kernel_failed").to_string(),
+                message: error["message"].as_str().unwrap_or_default().to_string(),
+            });
+        }
         serde_json::from_value(reply).map_err(|e| SidecarError::BadReply {
             op: request.op().to_string(),
             why: format!("scripted reply of the wrong shape ({e})"),

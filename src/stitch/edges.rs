@@ -5,7 +5,7 @@ use std::collections::BTreeSet;
 
 use super::{joint, FreeEdges, PatchInfo};
 use crate::geom::inside::SolidMesh;
-use crate::model::shapes::{EdgeProbe, Fused};
+use crate::model::shapes::{EdgeProbe, Fused, FusedEdge};
 
 /// Whether the free edge of `face` lies in the material of its patch's solid.
 pub(super) fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], solids: &[SolidMesh]) -> bool {
@@ -13,9 +13,11 @@ pub(super) fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[Pat
     joint::is_open(probe, joint::PROBE_STEP * patch.thickness, patch.to_mid, |q| solids[patch.solid].contains(q))
 }
 
-/// How far the free edge `edge` of `face` must grow to reach the part's boundary (see
-/// `joint::rim_shortfall`). Only straight edges: a strip grown from a curved edge of a curved patch (a tube's
-/// end) is a ruled face off the patch's surface, and fusing it broke the patch it touched (salome_pipe).
+/// How far the free edge `edge` of `face` must grow to reach the part's boundary, if it stops short of it (see
+/// `joint::rim_shortfall`): straight and curved edges alike (a tube cut obliquely falls short on one side) when
+/// `curved`, but for a curved edge of a freeform patch. Its strip (ruled, or a face of the patch's own offset
+/// surface: both tried) leaves faces of the patch that fail the kernel's check once fused, and a broken file is
+/// worse than a gap the report names.
 pub(super) fn to_rim(
     fused: &Fused,
     edge: usize,
@@ -23,16 +25,22 @@ pub(super) fn to_rim(
     probe: &EdgeProbe,
     patches: &[PatchInfo],
     solids: &[SolidMesh],
+    curved: bool,
 ) -> Option<Vec<f64>> {
-    let points = &fused.edges[edge].points;
-    let chord = match (points.first(), points.last()) {
-        (Some(a), Some(b)) => a.distance(*b),
-        _ => 0.0,
-    };
-    if chord < STRAIGHT * fused.edges[edge].length {
+    let patch = &patches[fused.faces[face].patch];
+    if (patch.freeform || !curved) && !straight(&fused.edges[edge]) {
         return None;
     }
     shortfall(fused, face, probe, patches, solids)
+}
+
+/// Whether an edge of the fused result is straight: its chord is STRAIGHT of its length.
+fn straight(edge: &FusedEdge) -> bool {
+    let chord = match (edge.points.first(), edge.points.last()) {
+        (Some(a), Some(b)) => a.distance(*b),
+        _ => 0.0,
+    };
+    chord >= STRAIGHT * edge.length
 }
 
 /// How far the free edge of `face` stops short of the part's boundary, if it does (`joint::rim_shortfall`).

@@ -32,7 +32,7 @@ pub(super) enum Pass {
 
 /// One pass of `stitch` over the free edges `free` of `fused` and their probes (with meetings for a joints
 /// pass): the result fused again, its kept pieces and the branches dropped; None when a rims pass finds
-/// nothing to grow.
+/// nothing to grow. `curved_rims`: curved edges grow to the rim too (see `edges::to_rim`).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn grow<K: Kernel>(
     kernel: &mut K,
@@ -44,6 +44,7 @@ pub(super) fn grow<K: Kernel>(
     solids: &[SolidMesh],
     fuzzy: f64,
     pass: Pass,
+    curved_rims: bool,
     tally: &mut JointTally,
 ) -> Result<Option<Grown>, SidecarError> {
     let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
@@ -70,23 +71,32 @@ pub(super) fn grow<K: Kernel>(
         };
         let grow = match verdict {
             Verdict::Rim | Verdict::Unresolved if pass == Pass::Partners => None,
-            verdict @ (Verdict::Rim | Verdict::Unresolved) => match to_rim(fused, edge, face, p, patches, solids) {
-                Some(lengths) => Some((
-                    patch,
-                    StripRequest { edge, face, lengths, onto_face: false },
-                    (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
-                    p,
-                )),
-                None => {
-                    // A rim edge may still be the thicker level of a step: the thinner level's edge lies on the
-                    // boundary past it, so its outside reads as out of the material.
-                    let open = verdict == Verdict::Unresolved;
-                    if pass == Pass::Joints {
-                        open_edges.push(OpenEdge { free: k, patch, probe: p, length, nearest: f64::INFINITY, open });
+            verdict @ (Verdict::Rim | Verdict::Unresolved) => {
+                match to_rim(fused, edge, face, p, patches, solids, curved_rims) {
+                    Some(lengths) => Some((
+                        patch,
+                        StripRequest { edge, face, lengths, onto_face: false },
+                        (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
+                        p,
+                    )),
+                    None => {
+                        // A rim edge may still be the thicker level of a step: the thinner level's edge lies on the
+                        // boundary past it, so its outside reads as out of the material.
+                        let open = verdict == Verdict::Unresolved;
+                        if pass == Pass::Joints {
+                            open_edges.push(OpenEdge {
+                                free: k,
+                                patch,
+                                probe: p,
+                                length,
+                                nearest: f64::INFINITY,
+                                open,
+                            });
+                        }
+                        None
                     }
-                    None
                 }
-            },
+            }
             Verdict::Extend(x) => {
                 open_edges.push(OpenEdge { free: k, patch, probe: p, length, nearest: x.distance, open: true });
                 let mut ids = vec![patch + 1, x.partner + 1];

@@ -40,6 +40,8 @@ pub struct PatchInfo {
     pub junction: bool,
     /// The wall (solid, pair group) the patch was made from: the levels of a thickness step share it.
     pub wall: (usize, usize),
+    /// A freeform patch (offset of a B-spline): its curved free edges do not grow to the rim (`edges::to_rim`).
+    pub freeform: bool,
 }
 
 /// The joints made between two patches (or tried from one), summed over their edges.
@@ -132,7 +134,7 @@ pub fn stitch<K: Kernel>(
 ) -> Result<Stitched, SidecarError> {
     let mut tally = JointTally::default();
     let (free, probes) = free_and_probed(kernel, fused, keep, patches, true)?;
-    let grown = grow(kernel, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
+    let grown = run_pass(kernel, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
     let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
     peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
     // The free edges of the result, probed once for both the rims pass and the final count.
@@ -140,7 +142,7 @@ pub fn stitch<K: Kernel>(
     let (mut counted, mut open_patches) = classify_free(&fused, &free, &probes, patches, solids);
     if counted.open_edges > 0 {
         if let Some((again, again_keep, more)) =
-            later_pass(kernel, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
+            run_pass(kernel, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
         {
             (fused, keep) = (again, again_keep);
             branches.extend(more);
@@ -151,7 +153,7 @@ pub fn stitch<K: Kernel>(
     }
     if counted.open_edges > 0 {
         let (open_free, open_probes) = free_and_probed(kernel, &fused, &keep, patches, true)?;
-        if let Some((again, again_keep, more)) = later_pass(
+        if let Some((again, again_keep, more)) = run_pass(
             kernel,
             &fused,
             &keep,
@@ -173,10 +175,13 @@ pub fn stitch<K: Kernel>(
     Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches })
 }
 
-/// A pass after the first only improves on what the first made: when the kernel fails it (a fuse that gives up),
-/// the stitching and its joint tally stand as they were; a kernel that stops answering is still an error.
+/// One pass of stitching, growing curved edges to the rim too; when the kernel fails it (a fuse that gives up),
+/// the same pass growing straight edges only: a curved edge's strip is a ruled face (but along a cylinder's
+/// axis or a cone's ruling), which the fuse gives up on more often, and a failed pass loses every joint in it.
+/// A pass after the first only improves on what the first made: when the kernel fails that too, the stitching
+/// and its joint tally stand as they were. A kernel that stops answering is an error.
 #[allow(clippy::too_many_arguments)]
-fn later_pass<K: Kernel>(
+fn run_pass<K: Kernel>(
     kernel: &mut K,
     fused: &Fused,
     keep: &[bool],
@@ -189,8 +194,13 @@ fn later_pass<K: Kernel>(
     tally: &mut JointTally,
 ) -> Result<Option<Grown>, SidecarError> {
     let before = tally.clone();
-    match grow(kernel, fused, keep, free, probes, patches, solids, fuzzy, pass, tally) {
-        Err(e) if e.code().is_some() => {
+    let mut outcome = grow(kernel, fused, keep, free, probes, patches, solids, fuzzy, pass, true, tally);
+    if matches!(&outcome, Err(e) if e.code().is_some()) {
+        *tally = before.clone();
+        outcome = grow(kernel, fused, keep, free, probes, patches, solids, fuzzy, pass, false, tally);
+    }
+    match outcome {
+        Err(e) if e.code().is_some() && pass != Pass::Joints => {
             *tally = before;
             Ok(None)
         }

@@ -174,7 +174,16 @@ mod tests {
     }
 
     fn info() -> PatchInfo {
-        PatchInfo { thickness: 2.0, to_mid: 0.0, solid: 0, reach: 3.0, on_rim: 0.2, junction: false, wall: (0, 0) }
+        PatchInfo {
+            thickness: 2.0,
+            to_mid: 0.0,
+            solid: 0,
+            reach: 3.0,
+            on_rim: 0.2,
+            junction: false,
+            wall: (0, 0),
+            freeform: false,
+        }
     }
 
     /// A plate 100 x 60 x 2 (the solid) whose mid-patch (patch 0, two halves) a wall's patch (patch 1) crosses

@@ -6,6 +6,7 @@ use crate::load::Part;
 use crate::model::params::Position;
 use crate::model::tolerance;
 use crate::pairing::driver::SolidPairing;
+use crate::pairing::PairKind;
 use crate::patch::make::Made;
 use crate::trim::branch_limit;
 
@@ -30,6 +31,7 @@ pub fn patch_infos(part: &Part, pairings: &[SolidPairing], made: &[Made], positi
                 on_rim: tolerance::on_rim(m.plan.thickness.mean, part.solids[m.solid - 1].mesh_tolerance),
                 junction: junctions[m.solid - 1],
                 wall: (m.solid, m.plan.group),
+                freeform: m.plan.kind == PairKind::Freeform,
             }
         })
         .collect()

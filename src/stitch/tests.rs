@@ -60,7 +60,7 @@ fn fused(faces: Vec<Value>, edges: Vec<Value>) -> Fused {
 }
 
 fn info(thickness: f64, wall: (usize, usize)) -> PatchInfo {
-    PatchInfo { thickness, to_mid: 0.0, solid: 0, reach: 4.5, on_rim: 0.2, junction: false, wall }
+    PatchInfo { thickness, to_mid: 0.0, solid: 0, reach: 4.5, on_rim: 0.2, junction: false, wall, freeform: false }
 }
 
 /// Runs stitch on `fused` (every piece kept) in a solid filling `solid` (origin, size), with the probes and pass
@@ -200,4 +200,64 @@ fn two_levels_of_a_wall_at_a_thickness_step_are_bridged_by_a_ramp() {
         .collect();
     assert_eq!(unify, [true, false]);
     assert_eq!(stitched.joints, [report(vec![1, 2], "step", 2, 20.0)]);
+}
+
+#[test]
+fn a_curved_edge_short_of_the_rim_grows_to_it_unless_its_patch_is_freeform() {
+    // A plate 2 thick ending at x = 50 (the solid), its mid-patch at z = 1 stopping 0.7 short at x = 49.3 along an
+    // edge bowed 0.3 inwards (a tube cut obliquely, seen from close). Growth to the rim: 0.7 at every sample,
+    // for a patch on an analytic surface; none from a curved edge of a freeform patch.
+    let (a, b) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
+    let bow = DVec3::new(49.0, 5.0, 1.0);
+    let length = a.distance(bow) + bow.distance(b);
+    let edges = vec![json!({"length": length, "faces": [0], "points": [v(a), v(bow), v(b)]})];
+    let fused = fused(vec![face(0, DVec3::Z)], edges);
+    let wire = probe(a, b, DVec3::Z, DVec3::X, &[]);
+    let probe: EdgeProbe = serde_json::from_value::<crate::kernel::protocol::EdgeProbe>(wire).unwrap().into();
+    let mesh = SolidMesh::new(&synthetic::cuboid(DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0))).unwrap();
+    let analytic = [info(2.0, (1, 0))];
+    let lengths = edges::to_rim(&fused, 0, 0, &probe, &analytic, std::slice::from_ref(&mesh), true).unwrap();
+    assert!(lengths.iter().all(|&d| (d - 0.7).abs() < 1e-6), "{lengths:?}");
+    let freeform = [PatchInfo { freeform: true, ..info(2.0, (1, 0)) }];
+    assert_eq!(edges::to_rim(&fused, 0, 0, &probe, &freeform, std::slice::from_ref(&mesh), true), None);
+    // The fallback of a pass the kernel failed: straight edges only.
+    assert_eq!(edges::to_rim(&fused, 0, 0, &probe, &analytic, std::slice::from_ref(&mesh), false), None);
+}
+
+#[test]
+fn a_pass_the_kernel_fails_with_a_curved_rim_strip_is_made_again_with_straight_edges_only() {
+    // A plate 2 thick in x 0..50, its mid-patch at z = 1 stopping 0.7 short of both ends: at x = 49.3 along a
+    // straight edge, at x = 0.7 along an edge bowed 0.3 inwards. Both grow to the rim; the fuse fails, so the
+    // pass is made again growing the straight edge only: the tally counts it, and the curved one as unmade.
+    let (a, b) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
+    let (c, d) = (DVec3::new(0.7, 10.0, 1.0), DVec3::new(0.7, 0.0, 1.0));
+    let bow = DVec3::new(1.0, 5.0, 1.0);
+    let curved_length = c.distance(bow) + bow.distance(d);
+    let curved = json!({"length": curved_length, "faces": [0], "points": [v(c), v(bow), v(d)]});
+    let fused = fused(vec![face(0, DVec3::Z)], vec![edge(a, b, &[0]), curved]);
+    let probes = json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[]), probe(c, d, DVec3::Z, -DVec3::X, &[])]});
+    let made = |k: usize| vec![json!({"area": 7.0, "error": null}); k];
+    let replies = vec![
+        probes,
+        json!({"handle": 20, "strips": made(2), "corners": []}),
+        json!({"handle": 30, "faces": 1}),
+        json!({"error": {"code": "kernel_failed", "message": "the fuse gave up"}}),
+        json!({"handle": 21, "strips": made(1), "corners": []}),
+        json!({"handle": 31, "faces": 1}),
+        json!({"handle": 40, "faces": [face(0, DVec3::Z)], "edges": []}),
+    ];
+    let (stitched, kernel) = run(&fused, &[info(2.0, (1, 0))], (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies);
+
+    assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "fuse", "extend_edges", "gather", "fuse"]);
+    let grown: Vec<Vec<usize>> = kernel
+        .requests
+        .iter()
+        .filter_map(|r| match r {
+            Request::ExtendEdges { strips, .. } => Some(strips.iter().map(|s| s.edge).collect()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(grown, vec![vec![0, 1], vec![0]]);
+    let unmade = JointReport { patches: vec![1], kind: "none", status: "no_partner", edges: 1, length: curved_length };
+    assert_eq!(stitched.joints, vec![unmade, report(vec![1], "rim", 1, 10.0)]);
 }

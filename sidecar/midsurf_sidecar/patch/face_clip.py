@@ -9,7 +9,8 @@ grows the clipped edges back to the neighbouring patches.
 
 import math
 
-from OCP.BRepAdaptor import BRepAdaptor_Surface
+from OCP.BRep import BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon, BRepBuilderAPI_Transform
 from OCP.BRepClass3d import BRepClass3d_SolidClassifier
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism, BRepPrimAPI_MakeRevol
@@ -17,15 +18,18 @@ from OCP.BRepTools import BRepTools
 from OCP.BRepGProp import BRepGProp
 from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
 from OCP.GProp import GProp_GProps
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN, TopAbs_OUT
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
-from ..constants import CONFUSION, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AXES, SECTOR_INNER_SHARE
+from ..constants import (
+    BOUNDARY_SAMPLES, CONFUSION, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AXES, SECTOR_INNER_SHARE,
+)
 from ..geom.booleans import split, unify
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import interior_point
 from ..geom.topology import ancestors, diagonal, indexed_map, surface_props
+from ..protocol.errors import KernelError
 
 
 def clip_to_partners(
@@ -101,26 +105,79 @@ def clip_to_partners(
 
 def within_solid(face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float, negligible: float) -> list[TopoDS_Face]:
     """The pieces of a curved mid-patch face that lie in `solid`; [face] when none lies outside, when all that
-    does is a band no wider than `negligible`, or when OCCT gives up. Offsetting a sphere, a cone, a torus or a
-    freeform face keeps its (u, v) bounds, so where the wall's rim is not square to the face (a dome cut by a
-    plane off its centre) the offset rim runs past the solid's boundary: cut there, the patch ends on the rim
-    face as a wall's mid-surface does. A band within the rim tolerance stays: a drafted wall's patches all
-    overshoot their rim by as little, planar ones included, and cutting only the curved ones would part them."""
-    splitter = split(face, [solid], fuzzy)
+    does reaches no farther than `negligible` past the cut, or when OCCT gives up. Offsetting a curved face keeps
+    its (u, v) bounds (a cylinder's clip to its partners' sectors is about the axis only), so where the wall's
+    rim is not square to the face (a dome cut by a plane off its centre, a tube cut by an oblique plane) the
+    offset rim runs past the solid's boundary: cut there, the patch ends on the rim face as a wall's mid-surface
+    does. A band within the rim tolerance stays: a drafted wall's patches all overshoot their rim by as little,
+    planar ones included, and cutting only the curved ones would part them."""
+    splitter = _split_by_solid(face, solid, fuzzy)
     if splitter is None:
         return [face]
-    pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
-    if pieces.Size() < 2:
-        return [face]
+    shape = splitter.Shape()
+    pieces = indexed_map(shape, TopAbs_FACE)
     classifier = BRepClass3d_SolidClassifier(solid)
     faces = [TopoDS.Face(pieces.FindKey(i)) for i in range(1, pieces.Size() + 1)]
-    inside = [_inside(classifier, _point(piece), fuzzy) for piece in faces]
-    outside = [piece for piece, keep in zip(faces, inside) if not keep]
-    if all(keep for keep in inside) or not any(inside):
+    try:
+        inside = [_inside(classifier, _point(piece), fuzzy) for piece in faces]
+    except KernelError:
+        return [face]  # a sliver with no point inside it: the cut is not to be trusted
+    if all(inside) or not any(inside):
         return [face]
-    if all(_width(piece, surface_props(piece).Mass()) <= negligible for piece in outside):
+    cut = _cut_lengths(shape, pieces, inside)
+    outside = [k for k in range(len(faces)) if not inside[k]]
+    if all(surface_props(faces[k]).Mass() / max(cut[k], MIN_PERIMETER) <= negligible for k in outside):
         return [face]
     return [piece for piece, keep in zip(faces, inside) if keep]
+
+
+def _split_by_solid(face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float):
+    """The face split by the solid's boundary, None when it is not cut. OCCT's fuzzy split can miss a section
+    running at a shallow angle to the face's own rim (a tube's wall cut by an oblique plane): when the face's
+    boundary runs out of the solid and the fuzzy split gives one piece, it splits again without fuzz."""
+    splitter = split(face, [solid], fuzzy)
+    if splitter is not None and indexed_map(splitter.Shape(), TopAbs_FACE).Size() >= 2:
+        return splitter
+    if not _boundary_leaves(face, solid, fuzzy):
+        return None
+    splitter = split(face, [solid], 0.0)
+    if splitter is not None and indexed_map(splitter.Shape(), TopAbs_FACE).Size() >= 2:
+        return splitter
+    return None
+
+
+def _boundary_leaves(face: TopoDS_Face, solid: TopoDS_Shape, tolerance: float) -> bool:
+    """Whether a point of the face's boundary (BOUNDARY_SAMPLES inside each edge) lies outside the solid."""
+    classifier = BRepClass3d_SolidClassifier(solid)
+    edges = indexed_map(face, TopAbs_EDGE)
+    for i in range(1, edges.Size() + 1):
+        edge = TopoDS.Edge(edges.FindKey(i))
+        if BRep_Tool.Degenerated_s(edge):
+            continue
+        curve = BRepAdaptor_Curve(edge)
+        first, last = curve.FirstParameter(), curve.LastParameter()
+        for k in range(1, BOUNDARY_SAMPLES + 1):
+            p = curve.Value(first + (last - first) * k / (BOUNDARY_SAMPLES + 1))
+            classifier.Perform(p, max(tolerance, CONFUSION))
+            if classifier.State() == TopAbs_OUT:
+                return True
+    return False
+
+
+def _cut_lengths(shape: TopoDS_Shape, pieces, inside: list[bool]) -> list[float]:
+    """Per piece, the length of its edges shared with a piece on the other side of the solid's boundary (the
+    cut): a piece outside reaches area / cut past it, its band's width (a crescent's mean height)."""
+    out = [0.0] * pieces.Size()
+    edge_faces = ancestors(shape, TopAbs_EDGE, TopAbs_FACE)
+    for e in range(1, edge_faces.Size() + 1):
+        owners = {pieces.FindIndex(f) - 1 for f in edge_faces.FindFromIndex(e)}
+        if len({inside[i] for i in owners}) < 2:
+            continue
+        length = GProp_GProps()
+        BRepGProp.LinearProperties_s(edge_faces.FindKey(e), length)
+        for i in owners:
+            out[i] += length.Mass()
+    return out
 
 
 def _point(piece: TopoDS_Face):

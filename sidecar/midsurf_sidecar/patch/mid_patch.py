@@ -8,7 +8,7 @@ from typing import Any
 from OCP.BRep import BRep_Builder
 from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepTools import BRepTools, BRepTools_ReShape
-from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
+from OCP.GeomAbs import GeomAbs_Plane
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
@@ -113,7 +113,7 @@ def _patch(
                 new_faces = clip_to_partners(
                     new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end, exclude
                 )
-            if options.solid is not None and not _plane_or_cylinder(new_faces[0]):
+            if options.solid is not None and not _is_plane(new_faces[0]):
                 fuzzy = clip.fuzzy if clip is not None else CONFUSION
                 new_faces = [piece for f in new_faces for piece in within_solid(f, options.solid, fuzzy, options.negligible)]
             if options.reverse:
@@ -126,6 +126,8 @@ def _patch(
     return compound, described, filled
 
 
-def _plane_or_cylinder(face: TopoDS_Face) -> bool:
-    """Planar and cylindrical patch faces are cut to their partners' footprints instead (clip_to_partners)."""
-    return BRepAdaptor_Surface(face, True).GetType() in (GeomAbs_Plane, GeomAbs_Cylinder)
+def _is_plane(face: TopoDS_Face) -> bool:
+    """Planar patch faces are cut to their partners' footprints instead (clip_to_partners: prisms of their
+    outlines keep an offset plane in the material); a cylinder's clip to its partners' sectors is about the
+    axis only, so it is cut to the solid too."""
+    return BRepAdaptor_Surface(face, True).GetType() == GeomAbs_Plane
