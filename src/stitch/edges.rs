@@ -35,7 +35,7 @@ pub(super) fn to_rim(
 }
 
 /// Whether an edge of the fused result is straight: its chord is STRAIGHT of its length.
-fn straight(edge: &FusedEdge) -> bool {
+pub(super) fn straight(edge: &FusedEdge) -> bool {
     let chord = match (edge.points.first(), edge.points.last()) {
         (Some(a), Some(b)) => a.distance(*b),
         _ => 0.0,

@@ -5,7 +5,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::bridge;
-use super::edges::{open, to_rim};
+use super::edges::{open, straight, to_rim};
 use super::joint::{self, Verdict};
 use super::{kept_faces, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
@@ -32,7 +32,8 @@ pub(super) enum Pass {
 
 /// One pass of `stitch` over the free edges `free` of `fused` and their probes (with meetings for a joints
 /// pass): the result fused again, its kept pieces and the branches dropped; None when a rims pass finds
-/// nothing to grow. `curved_rims`: curved edges grow to the rim too (see `edges::to_rim`).
+/// nothing to grow. `curved_rims`: Some when curved edges grow to the rim too (see `edges::to_rim`), set when
+/// one does.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn grow<K: Kernel>(
     kernel: &mut K,
@@ -44,7 +45,7 @@ pub(super) fn grow<K: Kernel>(
     solids: &[SolidMesh],
     fuzzy: f64,
     pass: Pass,
-    curved_rims: bool,
+    mut curved_rims: Option<&mut bool>,
     tally: &mut JointTally,
 ) -> Result<Option<Grown>, SidecarError> {
     let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
@@ -72,13 +73,18 @@ pub(super) fn grow<K: Kernel>(
         let grow = match verdict {
             Verdict::Rim | Verdict::Unresolved if pass == Pass::Partners => None,
             verdict @ (Verdict::Rim | Verdict::Unresolved) => {
-                match to_rim(fused, edge, face, p, patches, solids, curved_rims) {
-                    Some(lengths) => Some((
-                        patch,
-                        StripRequest { edge, face, lengths, onto_face: false },
-                        (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
-                        p,
-                    )),
+                match to_rim(fused, edge, face, p, patches, solids, curved_rims.is_some()) {
+                    Some(lengths) => {
+                        if let Some(grew) = curved_rims.as_deref_mut() {
+                            *grew |= !straight(&fused.edges[edge]);
+                        }
+                        Some((
+                            patch,
+                            StripRequest { edge, face, lengths, onto_face: false },
+                            (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
+                            p,
+                        ))
+                    }
                     None => {
                         // A rim edge may still be the thicker level of a step: the thinner level's edge lies on the
                         // boundary past it, so its outside reads as out of the material.

@@ -194,10 +194,12 @@ fn run_pass<K: Kernel>(
     tally: &mut JointTally,
 ) -> Result<Option<Grown>, SidecarError> {
     let before = tally.clone();
-    let mut outcome = grow(kernel, fused, keep, free, probes, patches, solids, fuzzy, pass, true, tally);
-    if matches!(&outcome, Err(e) if e.code().is_some()) {
+    let mut curved = false;
+    let mut outcome = grow(kernel, fused, keep, free, probes, patches, solids, fuzzy, pass, Some(&mut curved), tally);
+    // Without a curved edge grown, the pass made again would be the same.
+    if curved && matches!(&outcome, Err(e) if e.code().is_some()) {
         *tally = before.clone();
-        outcome = grow(kernel, fused, keep, free, probes, patches, solids, fuzzy, pass, false, tally);
+        outcome = grow(kernel, fused, keep, free, probes, patches, solids, fuzzy, pass, None, tally);
     }
     match outcome {
         Err(e) if e.code().is_some() && pass != Pass::Joints => {

@@ -261,3 +261,22 @@ fn a_pass_the_kernel_fails_with_a_curved_rim_strip_is_made_again_with_straight_e
     let unmade = JointReport { patches: vec![1], kind: "none", status: "no_partner", edges: 1, length: curved_length };
     assert_eq!(stitched.joints, vec![unmade, report(vec![1], "rim", 1, 10.0)]);
 }
+
+#[test]
+fn a_failed_pass_growing_no_curved_edge_is_not_made_again() {
+    // The plate of the test above with its straight edge only: the joints pass fails as it is (the same pass
+    // made again would fail the same way), and the joints pass's failure is the stitching's.
+    let (a, b) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
+    let fused = fused(vec![face(0, DVec3::Z)], vec![edge(a, b, &[0])]);
+    let replies = vec![
+        json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[])]}),
+        json!({"handle": 20, "strips": [{"area": 7.0, "error": null}], "corners": []}),
+        json!({"handle": 30, "faces": 1}),
+        json!({"error": {"code": "kernel_failed", "message": "the fuse gave up"}}),
+    ];
+    let mesh = SolidMesh::new(&synthetic::cuboid(DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0))).unwrap();
+    let mut kernel = FakeKernel::new(replies);
+    let result = stitch(&mut kernel, &fused, &[true], &[info(2.0, (1, 0))], &[mesh], 1e-4);
+    assert_eq!(result.err().and_then(|e| e.code().map(str::to_string)), Some("kernel_failed".to_string()));
+    assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "fuse"]);
+}
