@@ -7,8 +7,10 @@ direction meets the support surfaces of the target faces. (Whether the edge lies
 test, on the solid's mesh: the kernel's solid classifier is far too slow for thousands of points.)
 """
 
+import functools
 from dataclasses import dataclass
 from typing import Any
+
 
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
@@ -124,7 +126,6 @@ class PoleHull:
     def __init__(self, surface: Geom_BSplineSurface, margin: float) -> None:
         import numpy  # only for parts with splines: it costs a small part's start-up 0.1 s
 
-        self.np = numpy
         poles = [
             xyz(surface.Pole(i, j)) for i in range(1, surface.NbUPoles() + 1) for j in range(1, surface.NbVPoles() + 1)
         ]
@@ -134,18 +135,26 @@ class PoleHull:
         self.margin = margin
 
     def misses(self, origin: Vec, direction: Vec, reach: float) -> bool:
-        np = self.np
-        relative = self.poles - np.array(origin)
-        d = np.array(direction)
+        start, d, across_ray = _ray_frame(origin, direction)
+        relative = self.poles - start
         along = relative @ d
         if along.max() < -self.margin or along.min() > reach + self.margin:
             return True
-        helper = np.array([1.0, 0.0, 0.0]) if abs(d[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-        e1 = np.cross(d, helper)
-        e1 /= np.linalg.norm(e1)
-        e2 = np.cross(d, e1)
-        across = (relative @ np.stack([e1, e2], axis=1)) @ self.around
+        across = (relative @ across_ray) @ self.around
         return bool((across.min(axis=0) > self.margin).any() or (across.max(axis=0) < -self.margin).any())
+
+
+@functools.lru_cache(maxsize=1)
+def _ray_frame(origin: Vec, direction: Vec):
+    """The ray's start and direction as arrays, and two unit vectors across it (columns): computed once per ray,
+    not once per spline it is tested against."""
+    import numpy as np
+
+    d = np.array(direction)
+    helper = np.array([1.0, 0.0, 0.0]) if abs(d[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e1 = np.cross(d, helper)
+    e1 /= np.linalg.norm(e1)
+    return np.array(origin), d, np.stack([e1, np.cross(d, e1)], axis=1)
 
 
 class RaySurface:

@@ -56,7 +56,7 @@ def clip_to_partners(
         return [face]
     surface = BRepAdaptor_Surface(face, True)
     excluded = []
-    if surface.GetType() == GeomAbs_Plane and all(_is_plane(p) for p in [*partners, *exclude]):
+    if surface.GetType() == GeomAbs_Plane and all(is_plane(p) for p in [*partners, *exclude]):
         reach = diagonal(face) + max(diagonal(p) for p in [*partners, *exclude])
         normal = gp_Vec(surface.Plane().Axis().Direction())
         prisms = [_prism(_outline(p), normal, reach) for p in partners]
@@ -111,12 +111,11 @@ def within_solid(face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float, negligibl
     offset rim runs past the solid's boundary: cut there, the patch ends on the rim face as a wall's mid-surface
     does. A band within the rim tolerance stays: a drafted wall's patches all overshoot their rim by as little,
     planar ones included, and cutting only the curved ones would part them."""
-    splitter = _split_by_solid(face, solid, fuzzy)
-    if splitter is None:
-        return [face]
-    shape = splitter.Shape()
-    pieces = indexed_map(shape, TopAbs_FACE)
     classifier = BRepClass3d_SolidClassifier(solid)
+    cut_by = _split_by_solid(face, solid, classifier, fuzzy)
+    if cut_by is None:
+        return [face]
+    shape, pieces = cut_by
     faces = [TopoDS.Face(pieces.FindKey(i)) for i in range(1, pieces.Size() + 1)]
     try:
         inside = [_inside(classifier, _point(piece), fuzzy) for piece in faces]
@@ -131,24 +130,24 @@ def within_solid(face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float, negligibl
     return [piece for piece, keep in zip(faces, inside) if keep]
 
 
-def _split_by_solid(face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float):
-    """The face split by the solid's boundary, None when it is not cut. OCCT's fuzzy split can miss a section
-    running at a shallow angle to the face's own rim (a tube's wall cut by an oblique plane): when the face's
-    boundary runs out of the solid and the fuzzy split gives one piece, it splits again without fuzz."""
-    splitter = split(face, [solid], fuzzy)
-    if splitter is not None and indexed_map(splitter.Shape(), TopAbs_FACE).Size() >= 2:
-        return splitter
-    if not _boundary_leaves(face, solid, fuzzy):
-        return None
-    splitter = split(face, [solid], 0.0)
-    if splitter is not None and indexed_map(splitter.Shape(), TopAbs_FACE).Size() >= 2:
-        return splitter
+def _split_by_solid(face: TopoDS_Face, solid: TopoDS_Shape, classifier: BRepClass3d_SolidClassifier, fuzzy: float):
+    """(the split shape, its faces) of the face split by the solid's boundary, None when it is not cut. OCCT's
+    fuzzy split can miss a section running at a shallow angle to the face's own rim (a tube's wall cut by an
+    oblique plane): when the face's boundary runs out of the solid (`classifier`'s) and the fuzzy split gives one
+    piece, it splits again without fuzz."""
+    for tolerance in (fuzzy, 0.0):
+        if tolerance == 0.0 and not _boundary_leaves(face, classifier, fuzzy):
+            return None
+        splitter = split(face, [solid], tolerance)
+        if splitter is not None:
+            pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
+            if pieces.Size() >= 2:
+                return splitter.Shape(), pieces
     return None
 
 
-def _boundary_leaves(face: TopoDS_Face, solid: TopoDS_Shape, tolerance: float) -> bool:
+def _boundary_leaves(face: TopoDS_Face, classifier: BRepClass3d_SolidClassifier, tolerance: float) -> bool:
     """Whether a point of the face's boundary (BOUNDARY_SAMPLES inside each edge) lies outside the solid."""
-    classifier = BRepClass3d_SolidClassifier(solid)
     edges = indexed_map(face, TopAbs_EDGE)
     for i in range(1, edges.Size() + 1):
         edge = TopoDS.Edge(edges.FindKey(i))
@@ -202,7 +201,7 @@ def _width(face: TopoDS_Face, area: float) -> float:
     return 2.0 * area / max(perimeter.Mass(), MIN_PERIMETER)
 
 
-def _is_plane(face: TopoDS_Face) -> bool:
+def is_plane(face: TopoDS_Face) -> bool:
     return BRepAdaptor_Surface(face, True).GetType() == GeomAbs_Plane
 
 

@@ -6,9 +6,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from OCP.BRep import BRep_Builder
-from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepTools import BRepTools, BRepTools_ReShape
-from OCP.GeomAbs import GeomAbs_Plane
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
@@ -18,7 +16,7 @@ from ..geom.face_measure import measure
 from ..geom.topology import IndexedShapeMap
 from ..geom.vectors import Vec
 from ..protocol.errors import OpError, one_line
-from .face_clip import clip_to_partners, within_solid
+from .face_clip import clip_to_partners, is_plane, within_solid
 from .face_offset import offset_face
 from .face_projection import project_face
 
@@ -113,7 +111,9 @@ def _patch(
                 new_faces = clip_to_partners(
                     new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end, exclude
                 )
-            if options.solid is not None and not _is_plane(new_faces[0]):
+            # Planar faces are cut to their partners' footprints instead (prisms of their outlines keep an offset
+            # plane in the material); a cylinder's clip to its partners' sectors is about the axis only.
+            if options.solid is not None and not is_plane(new_faces[0]):
                 fuzzy = clip.fuzzy if clip is not None else CONFUSION
                 new_faces = [piece for f in new_faces for piece in within_solid(f, options.solid, fuzzy, options.negligible)]
             if options.reverse:
@@ -124,10 +124,3 @@ def _patch(
         for f in new_faces:
             builder.Add(compound, f)
     return compound, described, filled
-
-
-def _is_plane(face: TopoDS_Face) -> bool:
-    """Planar patch faces are cut to their partners' footprints instead (clip_to_partners: prisms of their
-    outlines keep an offset plane in the material); a cylinder's clip to its partners' sectors is about the
-    axis only, so it is cut to the solid too."""
-    return BRepAdaptor_Surface(face, True).GetType() == GeomAbs_Plane
