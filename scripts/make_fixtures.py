@@ -525,6 +525,21 @@ def tube_oblique_end() -> Fixture:
     return Fixture(part, math.pi * (20**2 - 18**2) * 40, 4)
 
 
+def channel_low_end() -> Fixture:
+    """A channel closed at one end by a lower wall: floor 100 x 60 x 2, side walls 2 thick and 40 high along
+    its long edges, an end wall 2 thick and 20 high between them at x = 0, flush with their ends. The class of
+    a wall that meets a taller one at its end: the taller wall's end face is coplanar with the lower wall's
+    outer skin and merges with it, so that skin carries a tongue (2 wide, 20 long) above each corner, lying
+    on the taller wall's end. Mid-surface: floor z = 1, side walls y = 1 and y = 59 (x 0..100 above the end
+    wall, x 1..100 beside it), end wall x = 1 (y 1..59, z 1..20). A patch that keeps the tongue (the end wall's
+    up to z = 40) or a side wall's strip x 0..1 beside the end wall lies on another wall lengthwise.
+    Faces: 12 (the x = 0 face merges the end wall's skin and both walls' ends; the open end's face is a U).
+    Volume: 100 * 60 * 2 + 2 * (100 * 2 * 38) + 56 * 2 * 18.
+    """
+    part = box(0, 0, 0, 100, 60, 2) + box(0, 0, 0, 100, 2, 40) + box(0, 58, 0, 100, 2, 40) + box(0, 0, 0, 2, 60, 20)
+    return Fixture(single_solid(part.clean()), 100 * 60 * 2 + 2 * (100 * 2 * 38) + 56 * 2 * 18, 12)
+
+
 def frustum(radius_bottom: float, radius_top: float, height: float) -> float:
     return math.pi * height / 3 * (radius_bottom**2 + radius_bottom * radius_top + radius_top**2)
 
@@ -621,6 +636,7 @@ PARTS: list[Callable[[], Fixture]] = [
     bspline_shell,
     bspline_shell_rib,
     tube_oblique_end,
+    channel_low_end,
 ]
 
 
