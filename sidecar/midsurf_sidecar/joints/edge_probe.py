@@ -11,7 +11,6 @@ import functools
 from dataclasses import dataclass
 from typing import Any
 
-
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
 from OCP.BRepBndLib import BRepBndLib
@@ -148,13 +147,13 @@ class PoleHull:
 def _ray_frame(origin: Vec, direction: Vec):
     """The ray's start and direction as arrays, and two unit vectors across it (columns): computed once per ray,
     not once per spline it is tested against."""
-    import numpy as np
+    import numpy
 
-    d = np.array(direction)
-    helper = np.array([1.0, 0.0, 0.0]) if abs(d[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    e1 = np.cross(d, helper)
-    e1 /= np.linalg.norm(e1)
-    return np.array(origin), d, np.stack([e1, np.cross(d, e1)], axis=1)
+    d = numpy.array(direction)
+    helper = numpy.array([1.0, 0.0, 0.0]) if abs(d[0]) < 0.9 else numpy.array([0.0, 1.0, 0.0])
+    e1 = numpy.cross(d, helper)
+    e1 /= numpy.linalg.norm(e1)
+    return numpy.array(origin), d, numpy.stack([e1, numpy.cross(d, e1)], axis=1)
 
 
 class RaySurface:

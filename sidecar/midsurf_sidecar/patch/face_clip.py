@@ -167,16 +167,21 @@ def _cut_lengths(shape: TopoDS_Shape, pieces, inside: list[bool]) -> list[float]
     """Per piece, the length of its edges shared with a piece on the other side of the solid's boundary (the
     cut): a piece outside reaches area / cut past it, its band's width (a crescent's mean height)."""
     out = [0.0] * pieces.Size()
-    edge_faces = ancestors(shape, TopAbs_EDGE, TopAbs_FACE)
-    for e in range(1, edge_faces.Size() + 1):
-        owners = {pieces.FindIndex(f) - 1 for f in edge_faces.FindFromIndex(e)}
+    for edge, owners in _edge_owners(shape, pieces):
         if len({inside[i] for i in owners}) < 2:
             continue
         length = GProp_GProps()
-        BRepGProp.LinearProperties_s(edge_faces.FindKey(e), length)
+        BRepGProp.LinearProperties_s(edge, length)
         for i in owners:
             out[i] += length.Mass()
     return out
+
+
+def _edge_owners(shape: TopoDS_Shape, pieces):
+    """Each edge of the split `shape` with the pieces (0-based, `pieces` order) that hold it."""
+    edge_faces = ancestors(shape, TopAbs_EDGE, TopAbs_FACE)
+    for e in range(1, edge_faces.Size() + 1):
+        yield edge_faces.FindKey(e), {pieces.FindIndex(f) - 1 for f in edge_faces.FindFromIndex(e)}
 
 
 def _point(piece: TopoDS_Face):
@@ -185,10 +190,8 @@ def _point(piece: TopoDS_Face):
 
 def _neighbours(shape: TopoDS_Shape, pieces) -> list[set[int]]:
     """Per piece (0-based, `pieces` order), the other pieces sharing an edge with it."""
-    edge_faces = ancestors(shape, TopAbs_EDGE, TopAbs_FACE)
     out: list[set[int]] = [set() for _ in range(pieces.Size())]
-    for e in range(1, edge_faces.Size() + 1):
-        owners = [pieces.FindIndex(f) - 1 for f in edge_faces.FindFromIndex(e)]
+    for _, owners in _edge_owners(shape, pieces):
         for i in owners:
             out[i].update(j for j in owners if j != i)
     return out
