@@ -534,3 +534,36 @@ def test_a_tube_patch_ends_on_an_oblique_rim_plane_not_past_it(client):
     assert max(heights) == pytest.approx(0.0, abs=1e-5)
     assert min(h for h in heights if h > -30) < -0.5  # the short side stays short here
 
+
+
+def test_the_cut_to_the_solid_splits_by_the_faces_that_can_cut():
+    """within_solid splits a curved patch face by the solid's faces near it only, and by the wall's own skins only
+    where they touch it: a tube R 20 / R 18, 40 long, its outer cylinder offset to R 19. The two end rings can
+    cut it; the skins lie 1 away (left out as skins, in as plain neighbours: their boxes hold the face's)."""
+    from build123d import Cylinder
+    from OCP.GeomAbs import GeomAbs_Cylinder
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopLoc import TopLoc_Location
+    from OCP.gp import gp_Trsf, gp_Vec
+
+    from midsurf_sidecar.patch.face_clip import _faces_near
+    from midsurf_sidecar.patch.face_offset import offset_face
+
+    tube = (Cylinder(20, 40) - Cylinder(18, 40)).wrapped
+    faces = indexed_map(tube, TopAbs_FACE)
+    cylinders = [TopoDS.Face(faces.FindKey(i)) for i in range(1, faces.Size() + 1)
+                 if BRepAdaptor_Surface(TopoDS.Face(faces.FindKey(i))).GetType() == GeomAbs_Cylinder]
+    outer = max(cylinders, key=lambda f: BRepAdaptor_Surface(f).Cylinder().Radius())
+    mid = offset_face(outer, -1.0)
+
+    def near(skins):
+        found = _faces_near(tube, mid, 1e-6, skins)
+        return indexed_map(found, TopAbs_FACE).Size() if found is not None else 0
+
+    assert faces.Size() == 4
+    assert near([]) == 4
+    assert near(cylinders) == 2
+    # Moved 500 up, the face is near none of them: nothing can cut it.
+    shift = gp_Trsf()
+    shift.SetTranslation(gp_Vec(0.0, 0.0, 500.0))
+    assert _faces_near(tube, TopoDS.Face(mid.Moved(TopLoc_Location(shift))), 1e-6, []) is None

@@ -9,17 +9,20 @@ grows the clipped edges back to the neighbouring patches.
 
 import math
 
-from OCP.BRep import BRep_Tool
+from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon, BRepBuilderAPI_Transform
 from OCP.BRepClass3d import BRepClass3d_SolidClassifier
+from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism, BRepPrimAPI_MakeRevol
 from OCP.BRepTools import BRepTools
 from OCP.BRepGProp import BRepGProp
 from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
 from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN, TopAbs_OUT
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
 from ..constants import (
@@ -103,16 +106,23 @@ def clip_to_partners(
     return [TopoDS.Face(merged.FindKey(i)) for i in range(1, merged.Size() + 1)]
 
 
-def within_solid(face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float, negligible: float) -> list[TopoDS_Face]:
+def within_solid(
+    face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float, negligible: float, skins: list[TopoDS_Shape] = ()
+) -> list[TopoDS_Face]:
     """The pieces of a curved mid-patch face that lie in `solid`; [face] when none lies outside, when all that
     does reaches no farther than `negligible` past the cut, or when OCCT gives up. Offsetting a curved face keeps
     its (u, v) bounds (a cylinder's clip to its partners' sectors is about the axis only), so where the wall's
     rim is not square to the face (a dome cut by a plane off its centre, a tube cut by an oblique plane) the
     offset rim runs past the solid's boundary: cut there, the patch ends on the rim face as a wall's mid-surface
     does. A band within the rim tolerance stays: a drafted wall's patches all overshoot their rim by as little,
-    planar ones included, and cutting only the curved ones would part them."""
+    planar ones included, and cutting only the curved ones would part them.
+
+    `skins` (the face's source and its partners) lie half the wall from the face: they cut it only where the
+    wall thins to nothing under it, so each is a tool of the split only when it comes within `fuzzy` of the
+    face. The distance is far cheaper than a split by a surface parallel to the face, the slowest kind of
+    split (seconds for one offset B-spline face)."""
     classifier = BRepClass3d_SolidClassifier(solid)
-    cut_by = _split_by_solid(face, solid, classifier, fuzzy)
+    cut_by = _split_by_solid(face, solid, classifier, fuzzy, skins)
     if cut_by is None:
         return [face]
     shape, pieces = cut_by
@@ -130,20 +140,52 @@ def within_solid(face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float, negligibl
     return [piece for piece, keep in zip(faces, inside) if keep]
 
 
-def _split_by_solid(face: TopoDS_Face, solid: TopoDS_Shape, classifier: BRepClass3d_SolidClassifier, fuzzy: float):
+def _split_by_solid(
+    face: TopoDS_Face, solid: TopoDS_Shape, classifier: BRepClass3d_SolidClassifier, fuzzy: float, skins
+):
     """(the split shape, its faces) of the face split by the solid's boundary, None when it is not cut. OCCT's
     fuzzy split can miss a section running at a shallow angle to the face's own rim (a tube's wall cut by an
     oblique plane): when the face's boundary runs out of the solid (`classifier`'s) and the fuzzy split gives one
-    piece, it splits again without fuzz."""
+    piece, it splits again without fuzz. Only the solid's faces near the face cut it (a split by the whole
+    solid costs as much as all its faces), and `skins` only when they touch it."""
+    near = _faces_near(solid, face, fuzzy, skins)
+    if near is None:
+        return None
     for tolerance in (fuzzy, 0.0):
         if tolerance == 0.0 and not _boundary_leaves(face, classifier, fuzzy):
             return None
-        splitter = split(face, [solid], tolerance)
+        splitter = split(face, [near], tolerance)
         if splitter is not None:
             pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
             if pieces.Size() >= 2:
                 return splitter.Shape(), pieces
     return None
+
+
+def _faces_near(solid: TopoDS_Shape, face: TopoDS_Face, margin: float, skins) -> TopoDS_Compound | None:
+    """A compound of the faces of `solid` whose bounding boxes come within `margin` of the face's, of `skins`
+    only those that come within `margin` of the face itself; None when there are none. Boxes from the
+    geometry, not a mesh: loose around a B-spline, never short of it."""
+    box = Bnd_Box()
+    BRepBndLib.Add_s(face, box, False)
+    box.Enlarge(max(margin, CONFUSION))
+    builder = BRep_Builder()
+    compound = TopoDS_Compound()
+    builder.MakeCompound(compound)
+    faces = indexed_map(solid, TopAbs_FACE)
+    found = False
+    for i in range(1, faces.Size() + 1):
+        other = Bnd_Box()
+        BRepBndLib.Add_s(faces.FindKey(i), other, False)
+        if box.IsOut(other):
+            continue
+        if any(faces.FindKey(i).IsSame(s) for s in skins):
+            distance = BRepExtrema_DistShapeShape(face, faces.FindKey(i))
+            if distance.IsDone() and distance.Value() > margin:
+                continue
+        builder.Add(compound, faces.FindKey(i))
+        found = True
+    return compound if found else None
 
 
 def _boundary_leaves(face: TopoDS_Face, classifier: BRepClass3d_SolidClassifier, tolerance: float) -> bool:

@@ -115,7 +115,11 @@ def _patch(
             # plane in the material); a cylinder's clip to its partners' sectors is about the axis only.
             if options.solid is not None and not is_plane(new_faces[0]):
                 fuzzy = clip.fuzzy if clip is not None else CONFUSION
-                new_faces = [piece for f in new_faces for piece in within_solid(f, options.solid, fuzzy, options.negligible)]
+                skins = [face_id, *(clip.partners[k] if clip is not None else [])]
+                skins = [face_map.FindKey(f + 1) for f in skins]
+                new_faces = [
+                    piece for f in new_faces for piece in within_solid(f, options.solid, fuzzy, options.negligible, skins)
+                ]
             if options.reverse:
                 new_faces = [TopoDS.Face(f.Reversed()) for f in new_faces]
             described.extend({"source": face_id, **measure(f)} for f in new_faces)
