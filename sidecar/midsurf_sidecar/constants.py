@@ -54,6 +54,9 @@ NORMAL_RESOLUTION = 1e-9
 # share of the face's bounding-box diagonal, so it scales with the face (its chords may cut across concave
 # boundaries, hence each candidate is classified before it is used).
 FALLBACK_DEFLECTION_RATIO = 0.01
+# A face's area samples number at most this many: their step doubles until they fit, evenly over the face (a
+# bound on the work for one face; the clip's tongue test asks for a step of half the dead-end width).
+MAX_AREA_SAMPLES = 4096
 FALLBACK_ANGLE = 0.5
 # Distances from an edge's middle, as fractions of the face's bounding-box diagonal, tried on both sides when
 # neither the UV centre nor a mesh triangle lies in the face: a ring 0.5 mm wide on a 100 m disc needs 1e-6.
@@ -81,6 +84,16 @@ VERTEX_MISS_MARGIN = 1.01
 # The clip is kept only when it removes more than this share of the face: below it the face already lies over its
 # partners, and splitting its edges would only add work for the joints.
 MIN_CLIPPED_SHARE = 0.01
+# An uncovered piece at a dead end of a clipped patch that reaches farther than this many times the dead-end width
+# from the covered pieces is a tongue, not a corner's overshoot: an overshoot band reaches its width, up to
+# sqrt(2) of it at a corner of two bands, and a tongue its length.
+TONGUE_REACH = 2.0
+# Material across a patch up to this many times its thickness is its own wall (Rust's stitch::peel
+# OWN_WALL_FACTOR): a tapered wall measures up to its thickest end, a wall crossed lengthwise its whole extent.
+OWN_WALL_FACTOR = 2.0
+# Directions of a patch's tangent plane (over a half turn) along which the clip measures the wall a tongue lies
+# on: a wall at any angle between two of them measures at most 1 / cos(pi / 16) = 1.02 times its thickness.
+TANGENT_DIRECTIONS = 8
 # Two cylinder axes within this angle (radians) are parallel: coaxial partners clip a cylindrical face.
 PARALLEL_AXES = 1e-6
 # A partner's sector starts at this share of the smaller radius: short of the axis, where a revolved section

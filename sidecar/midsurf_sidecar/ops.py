@@ -100,7 +100,9 @@ def _fill_edges(solid: TopoDS_Shape, args: dict[str, Any]) -> list[TopoDS_Shape]
 
 def _clip(args: dict[str, Any], count: int, faces: int) -> mid_patch.Clip | None:
     """The optional `clip`: {partners: [[face id]] per requested face, fuzzy, narrow, narrow_end (optional,
-    defaults to narrow), exclude (optional: [[face id]] per requested face)}."""
+    defaults to narrow), exclude (optional: [[face id]] per requested face), thickness, to_mid and wall_max
+    (optional, together: the wall's thickness, the step from the patch to mid-wall along the faces' outward
+    normals, the thickest wall that pairs whatever its width)}."""
     if "clip" not in args:
         return None
     clip = require_object(args, "clip")
@@ -117,7 +119,19 @@ def _clip(args: dict[str, Any], count: int, faces: int) -> mid_patch.Clip | None
         narrow,
         require_non_negative(clip, "narrow_end") if "narrow_end" in clip else narrow,
         [index_list(e, count, "excluded face", "the solid") for e in exclude],
+        *_clip_wall(clip),
     )
+
+
+def _clip_wall(clip: dict[str, Any]) -> tuple[float | None, float, float]:
+    """The clip's optional wall: (thickness, to_mid, wall_max), all three given or none."""
+    keys = ("thickness", "to_mid", "wall_max")
+    given = [k in clip for k in keys]
+    if not any(given):
+        return None, 0.0, 0.0
+    if not all(given):
+        raise BadArgs("clip needs all of `thickness`, `to_mid` and `wall_max`, or none")
+    return require_positive(clip, "thickness"), require_number(clip, "to_mid"), require_positive(clip, "wall_max")
 
 
 def fuse(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:

@@ -340,6 +340,15 @@ def test_clip_keeps_the_footprint_of_the_partners(client, tmp_path):
     clip = {"partners": [[thin_top]], "fuzzy": 1e-6, "narrow": 20.5}
     ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
     assert ok["faces"][0]["area"] == pytest.approx(100.0 * 30.0)
+    # Given the wall: the band reaches 60 from the covered piece, past twice its width, so it goes if it lies on
+    # another wall. Across it at mid-wall the material is 5 thick: more than twice a 2 mm wall, and within its
+    # plane 30 across (the extrusion), a wall when walls up to 100 pair (it goes), a block when they stop at 20
+    # (it stays). For a 3 mm wall, 5 across is its own wall (it stays).
+    for thickness, wall_max, area in [(2.0, 100.0, 40.0 * 30.0), (2.0, 20.0, 100.0 * 30.0), (3.0, 100.0, 100.0 * 30.0)]:
+        clip = {"partners": [[thin_top]], "fuzzy": 1e-6, "narrow": 20.5, "thickness": thickness, "to_mid": 0.0,
+                "wall_max": wall_max}
+        ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
+        assert sum(f["area"] for f in ok["faces"]) == pytest.approx(area), (thickness, wall_max)
     clip = {"partners": [[thin_top, thick_top]], "fuzzy": 1e-6, "narrow": 2.0}
     ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0, clip=clip)
     assert ok["faces"][0]["area"] == pytest.approx(100.0 * 30.0)
@@ -392,6 +401,32 @@ def slot_end() -> "TopoDS_Shape":
     unify = ShapeUpgrade_UnifySameDomain(shape, True, True, False)
     unify.Build()
     return unify.Shape()
+
+
+def test_clip_drops_a_tongue_at_a_dead_end_however_narrow(client):
+    # channel_low_end.step: the end wall (x 0..2, 20 high) meets side walls 40 high that end flush with its outer
+    # skin, so that skin (x = 0) carries a 2 wide tongue above each corner, lying on a side wall's end.
+    handle = load_fixture(client, "channel_low_end.step")
+    g = graph(client, handle)
+    outer = face_with(g, "plane", lambda f: f["normal"][0] < -0.99)
+    inner = face_with(g, "plane", lambda f: f["normal"][0] > 0.99 and f["centroid"][0] < 50.0)
+    assert outer["area"] == pytest.approx(60.0 * 20.0 + 2 * 2.0 * 20.0)
+
+    def area(narrow_end, wall_max=3.0):
+        clip = {"partners": [[inner["id"]]], "fuzzy": 1e-6, "narrow": narrow_end, "narrow_end": narrow_end,
+                "thickness": 2.0, "to_mid": 0.0, "wall_max": wall_max}
+        ok = client.ok("make_patch", handle=handle, faces=[outer["id"]], offset=-1.0, clip=clip)
+        return sum(f["area"] for f in ok["faces"])
+
+    # The uncovered piece (the 2 wide band round the inner skin's footprint, tongues and all) is 1.6 wide as
+    # 2 x area / perimeter, but its tongues reach 20 from the footprint: past twice the dead-end width, and
+    # lying on the side walls (the material across runs their length, the walls are 2 thick), it goes.
+    assert area(3.0) == pytest.approx(56.0 * 18.0)
+    # Within twice the dead-end width it is an overshoot, and the face stays whole.
+    assert area(10.5) == pytest.approx(outer["area"])
+    # Where the side walls (2 thick) are thicker than the walls that pair, no patch of theirs covers the
+    # tongues: they stay.
+    assert area(3.0, wall_max=1.5) == pytest.approx(outer["area"])
 
 
 def test_clip_cuts_a_cylinder_to_the_sector_of_its_coaxial_partner(client, tmp_path):

@@ -34,7 +34,10 @@ pub enum Placement {
 
 /// Partner faces per requested face (same order), the fuzzy tolerance of the cut, the widths up to which
 /// uncovered pieces stay: `narrow` between two covered pieces, `narrow_end` elsewhere; and per requested face
-/// the faces whose footprint (holes and all) goes to other patches whatever its width.
+/// the faces whose footprint (holes and all) goes to other patches whatever its width; the wall's thickness, the
+/// step from the patch to mid-wall along the faces' outward normals and the thickest wall that pairs whatever its
+/// width, with which a narrow piece at a dead end that reaches far from the covered pieces (a tongue) is tested
+/// for lying on another wall, whose own patch covers it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Clip {
     pub partners: Vec<Vec<usize>>,
@@ -43,6 +46,9 @@ pub struct Clip {
     pub narrow_end: f64,
     #[serde(skip_serializing_if = "none_excluded")]
     pub exclude: Vec<Vec<usize>>,
+    pub thickness: f64,
+    pub to_mid: f64,
+    pub wall_max: f64,
 }
 
 fn none_excluded(exclude: &[Vec<usize>]) -> bool {

@@ -53,6 +53,10 @@ pub fn make_patches<K: Kernel>(
                     narrow,
                     narrow_end,
                     exclude: plan.exclude.clone(),
+                    thickness: plan.thickness.mean,
+                    // The patch normal is the faces' outward one turned over when the plan reverses it.
+                    to_mid: if plan.reverse { -plan.to_mid } else { plan.to_mid },
+                    wall_max: sp.tolerances.t_max,
                 }),
                 reverse: plan.reverse,
                 fill: plan.fill.clone(),

@@ -1,6 +1,7 @@
 """A point inside a face and its outward normal: the UV centre if inside the face, else a mesh point, else a
 point just inside the middle of one of its edges (a sliver or a thin ring, where the other two miss)."""
 
+import math
 from collections.abc import Iterator
 
 from OCP.BRep import BRep_Tool
@@ -14,7 +15,9 @@ from OCP.TopAbs import TopAbs_IN
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
-from ..constants import BESIDE_EDGE_STEPS, FALLBACK_ANGLE, FALLBACK_DEFLECTION_RATIO, SINGULAR_METRIC
+from ..constants import (
+    BESIDE_EDGE_STEPS, FALLBACK_ANGLE, FALLBACK_DEFLECTION_RATIO, MAX_AREA_SAMPLES, SINGULAR_METRIC,
+)
 from ..protocol.errors import KernelError
 from .face_normals import OutwardNormals
 from .topology import curve_edges
@@ -88,7 +91,16 @@ def _uv_across(
 
 
 def _triangle_centroids(face: TopoDS_Face, diagonal: float) -> list[tuple[float, float]]:
-    """UV centroids of a coarse mesh's triangles, largest triangle first.
+    """UV centroids of a coarse mesh's triangles, largest triangle first."""
+    candidates = sorted((-area, i, u, v) for i, (area, u, v) in enumerate(area_samples(face, diagonal)))
+    return [(u, v) for _, _, u, v in candidates]
+
+
+def area_samples(face: TopoDS_Face, diagonal: float, step: float | None = None) -> list[tuple[float, float, float]]:
+    """(area, u, v) of each triangle of a coarse mesh of the face (`diagonal`: its bounding-box diagonal): the
+    UV centroid and the share of the face it stands for; [] when the face does not mesh. With `step`, each
+    triangle is split in four until no side is longer than `step` (a plane's mesh only joins its boundary's
+    vertices: long slivers), so that every sample stands for a small region.
 
     The mesh is made on a copy so the face's own triangulation (what `describe` returns as `mesh`) is
     untouched and the result does not depend on earlier requests.
@@ -98,12 +110,40 @@ def _triangle_centroids(face: TopoDS_Face, diagonal: float) -> list[tuple[float,
     tri = BRep_Tool.Triangulation_s(copy, TopLoc_Location())
     if tri is None or not tri.HasUVNodes():
         return []
-    candidates = []
-    for i in range(1, tri.NbTriangles() + 1):
-        a, b, c = tri.Triangle(i).Get()
-        pa, pb, pc = xyz(tri.Node(a)), xyz(tri.Node(b)), xyz(tri.Node(c))
-        area = norm(cross(sub(pb, pa), sub(pc, pa)))
-        uvs = [tri.UVNode(k) for k in (a, b, c)]
-        candidates.append((-area, i, sum(p.X() for p in uvs) / 3.0, sum(p.Y() for p in uvs) / 3.0))
-    candidates.sort()
-    return [(u, v) for _, _, u, v in candidates]
+    triangles = [
+        [(xyz(tri.Node(k)), (tri.UVNode(k).X(), tri.UVNode(k).Y())) for k in tri.Triangle(i).Get()]
+        for i in range(1, tri.NbTriangles() + 1)
+    ]
+    if step is not None:
+        # Coarser steps until the samples number MAX_AREA_SAMPLES at most: a bound on the work, evenly spread.
+        while sum(4 ** _splits(t, step) for t in triangles) > MAX_AREA_SAMPLES:
+            step *= 2.0
+    samples = []
+    for corners in triangles:
+        _subdivide(corners, step, samples)
+    return samples
+
+
+def _splits(corners, step: float) -> int:
+    """How many times _subdivide halves the triangle `corners` for sides of `step` at most."""
+    longest = max(norm(sub(corners[k][0], corners[k - 1][0])) for k in range(3))
+    return max(0, math.ceil(math.log2(longest / step))) if longest > step else 0
+
+
+def _subdivide(corners, step: float | None, out: list[tuple[float, float, float]]) -> None:
+    """Append (area, u, v) of the triangle `corners` ((point, uv) each), split in four (by its sides' middles,
+    in 3D and in UV alike: exact on a plane, close on a finely meshed curved face) while a side exceeds `step`."""
+    (pa, ta), (pb, tb), (pc, tc) = corners
+    longest = max(norm(sub(pb, pa)), norm(sub(pc, pb)), norm(sub(pa, pc)))
+    if step is None or longest <= step:
+        area = 0.5 * norm(cross(sub(pb, pa), sub(pc, pa)))
+        out.append((area, (ta[0] + tb[0] + tc[0]) / 3.0, (ta[1] + tb[1] + tc[1]) / 3.0))
+        return
+
+    def middle(p, q):
+        return scale(add_scaled(p[0], q[0], 1.0), 0.5), (0.5 * (p[1][0] + q[1][0]), 0.5 * (p[1][1] + q[1][1]))
+
+    a, b, c = corners
+    ab, bc, ca = middle(a, b), middle(b, c), middle(c, a)
+    for triangle in ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)):
+        _subdivide(triangle, step, out)

@@ -13,7 +13,9 @@ from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon, BRepBuilderAPI_Transform
+from OCP.BRepBuilderAPI import (
+    BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon, BRepBuilderAPI_MakeVertex, BRepBuilderAPI_Transform,
+)
 from OCP.BRepClass3d import BRepClass3d_SolidClassifier
 from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism, BRepPrimAPI_MakeRevol
@@ -26,13 +28,14 @@ from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
 from ..constants import (
-    BOUNDARY_SAMPLES, CONFUSION, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AXES, SECTOR_INNER_SHARE,
+    BOUNDARY_SAMPLES, CONFUSION, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AXES, SECTOR_INNER_SHARE, TONGUE_REACH,
 )
 from ..geom.booleans import split, unify
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import interior_point
 from ..geom.topology import ancestors, diagonal, indexed_map, surface_props
 from ..protocol.errors import KernelError
+from .wall_probe import WallProbe
 
 
 def clip_to_partners(
@@ -42,13 +45,19 @@ def clip_to_partners(
     narrow: float,
     narrow_end: float,
     exclude: list[TopoDS_Face] = (),
+    wall: WallProbe | None = None,
 ) -> list[TopoDS_Face]:
     """The pieces of `face` over the footprint of `partners`, plus the narrow uncovered pieces; [face] when
     nothing worth clipping. Pieces over one of `exclude` (the partners of the face's other thickness levels,
     whose own patches cover them) go whatever their width. An uncovered piece between two covered ones lies under something crossing the
     wall (a wall, a lug) and stays up to `narrow` wide: the patch runs on across the junction. One at a dead
     end (an overshoot at a corner, a slot's end running into a block) stays up to `narrow_end` wide; past it
-    the piece lies over other material, and the joints grow the clipped edge instead.
+    the piece lies over other material, and the joints grow the clipped edge instead. A narrow piece at a dead
+    end that reaches farther than TONGUE_REACH x `narrow_end` from the covered pieces is a tongue, not a corner's
+    overshoot: where a wall meets a taller one at its end, the taller wall's end face is coplanar with the lower
+    wall's skin and merges with it; its footprint lies on the taller wall, whose own patch covers it. A tongue
+    goes only when `wall` shows most of its far part (past `narrow_end` from the covered pieces) on another
+    wall (WallProbe.tongue): over a thick rib or a block no other patch covers it, and it stays.
 
     A planar face with planar partners is clipped by prisms of their outlines swept along its normal; a
     cylindrical face with coaxial cylindrical partners by the sectors their (u, v) ranges span about the axis.
@@ -87,14 +96,22 @@ def clip_to_partners(
     points = [_point(piece) for piece in faces]
     elsewhere = [any(_inside(c, p, fuzzy) for c in others) for p in points]
     covered = [not e and any(_inside(c, p, fuzzy) for c in classifiers) for p, e in zip(points, elsewhere)]
-    # Which pieces an uncovered one touches matters only when the two widths differ.
-    neighbours = _neighbours(splitter.Shape(), pieces) if narrow != narrow_end and not all(covered) else None
+    # Which pieces an uncovered one touches: a band between two covered ones is never a tongue.
+    neighbours = _neighbours(splitter.Shape(), pieces) if not all(covered) else None
+    cover = _compound([f for f, c in zip(faces, covered) if c])
     areas = [surface_props(piece).Mass() for piece in faces]
     kept = []
     for i, piece in enumerate(faces):
-        between = neighbours is not None and sum(1 for j in neighbours[i] if covered[j]) >= 2
-        if covered[i] or (not elsewhere[i] and _width(piece, areas[i]) <= (narrow if between else narrow_end)):
+        if covered[i]:
             kept.append(i)
+            continue
+        between = neighbours is not None and sum(1 for j in neighbours[i] if covered[j]) >= 2
+        if elsewhere[i] or _width(piece, areas[i]) > (narrow if between else narrow_end):
+            continue
+        if not between and wall is not None and _reach(piece, cover) > TONGUE_REACH * narrow_end:
+            if wall.tongue(piece, cover, narrow_end):
+                continue
+        kept.append(i)
     area = surface_props(face).Mass()
     kept_area = sum(areas[i] for i in kept)
     kept = [faces[i] for i in kept]
@@ -169,11 +186,8 @@ def _faces_near(solid: TopoDS_Shape, face: TopoDS_Face, margin: float, skins) ->
     box = Bnd_Box()
     BRepBndLib.Add_s(face, box, False)
     box.Enlarge(max(margin, CONFUSION))
-    builder = BRep_Builder()
-    compound = TopoDS_Compound()
-    builder.MakeCompound(compound)
     faces = indexed_map(solid, TopAbs_FACE)
-    found = False
+    near = []
     for i in range(1, faces.Size() + 1):
         other = Bnd_Box()
         BRepBndLib.Add_s(faces.FindKey(i), other, False)
@@ -183,13 +197,22 @@ def _faces_near(solid: TopoDS_Shape, face: TopoDS_Face, margin: float, skins) ->
             distance = BRepExtrema_DistShapeShape(face, faces.FindKey(i))
             if distance.IsDone() and distance.Value() > margin:
                 continue
-        builder.Add(compound, faces.FindKey(i))
-        found = True
-    return compound if found else None
+        near.append(faces.FindKey(i))
+    return _compound(near) if near else None
 
 
 def _boundary_leaves(face: TopoDS_Face, classifier: BRepClass3d_SolidClassifier, tolerance: float) -> bool:
     """Whether a point of the face's boundary (BOUNDARY_SAMPLES inside each edge) lies outside the solid."""
+    fractions = [k / (BOUNDARY_SAMPLES + 1) for k in range(1, BOUNDARY_SAMPLES + 1)]
+    for p in _edge_points(face, fractions):
+        classifier.Perform(p, max(tolerance, CONFUSION))
+        if classifier.State() == TopAbs_OUT:
+            return True
+    return False
+
+
+def _edge_points(face: TopoDS_Face, fractions: list[float]):
+    """Points of each edge of the face (degenerated ones left out) at these fractions of its parameter range."""
     edges = indexed_map(face, TopAbs_EDGE)
     for i in range(1, edges.Size() + 1):
         edge = TopoDS.Edge(edges.FindKey(i))
@@ -197,12 +220,8 @@ def _boundary_leaves(face: TopoDS_Face, classifier: BRepClass3d_SolidClassifier,
             continue
         curve = BRepAdaptor_Curve(edge)
         first, last = curve.FirstParameter(), curve.LastParameter()
-        for k in range(1, BOUNDARY_SAMPLES + 1):
-            p = curve.Value(first + (last - first) * k / (BOUNDARY_SAMPLES + 1))
-            classifier.Perform(p, max(tolerance, CONFUSION))
-            if classifier.State() == TopAbs_OUT:
-                return True
-    return False
+        for fraction in fractions:
+            yield curve.Value(first + (last - first) * fraction)
 
 
 def _cut_lengths(shape: TopoDS_Shape, pieces, inside: list[bool]) -> list[float]:
@@ -224,6 +243,27 @@ def _edge_owners(shape: TopoDS_Shape, pieces):
     edge_faces = ancestors(shape, TopAbs_EDGE, TopAbs_FACE)
     for e in range(1, edge_faces.Size() + 1):
         yield edge_faces.FindKey(e), {pieces.FindIndex(f) - 1 for f in edge_faces.FindFromIndex(e)}
+
+
+def _reach(piece: TopoDS_Face, cover: TopoDS_Shape) -> float:
+    """How far an uncovered piece reaches from the covered pieces (`cover`): the largest distance to them of
+    its vertices and edge midpoints (0 when nothing is covered). A band along a covered edge reaches its width,
+    a tongue standing off one its length, however narrow it is."""
+    farthest = 0.0
+    for point in _edge_points(piece, [0.0, 0.5, 1.0]):
+        distance = BRepExtrema_DistShapeShape(BRepBuilderAPI_MakeVertex(point).Vertex(), cover)
+        if distance.IsDone():
+            farthest = max(farthest, distance.Value())
+    return farthest
+
+
+def _compound(faces: list[TopoDS_Shape]) -> TopoDS_Compound:
+    builder = BRep_Builder()
+    compound = TopoDS_Compound()
+    builder.MakeCompound(compound)
+    for face in faces:
+        builder.Add(compound, face)
+    return compound
 
 
 def _point(piece: TopoDS_Face):

@@ -19,6 +19,7 @@ from ..protocol.errors import OpError, one_line
 from .face_clip import clip_to_partners, is_plane, within_solid
 from .face_offset import offset_face
 from .face_projection import project_face
+from .wall_probe import WallProbe
 
 FaceMaker = Callable[[TopoDS_Face], TopoDS_Face]
 
@@ -27,13 +28,18 @@ FaceMaker = Callable[[TopoDS_Face], TopoDS_Face]
 class Clip:
     """Partner faces per reference face (same order as the request's faces), the fuzzy tolerance, the widths
     up to which uncovered pieces stay: between covered pieces and at a dead end, and per reference face the
-    faces whose footprint goes to other patches (see face_clip)."""
+    faces whose footprint goes to other patches (see face_clip); the wall's thickness (None: not given), the
+    step from the patch to mid-wall along the reference faces' outward normals and the thickest wall that
+    pairs whatever its width, with which the clip tells a tongue lying on another wall (WallProbe)."""
 
     partners: list[list[int]]
     fuzzy: float
     narrow: float
     narrow_end: float
     exclude: list[list[int]]
+    thickness: float | None = None
+    to_mid: float = 0.0
+    wall_max: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -98,6 +104,9 @@ def _patch(
     builder.MakeCompound(compound)
     described = []
     filled = 0
+    wall = None
+    if clip is not None and clip.thickness is not None and options.solid is not None:
+        wall = WallProbe(options.solid, clip.thickness, clip.to_mid, clip.wall_max)
     for k, face_id in enumerate(face_ids):
         try:
             source = TopoDS.Face(face_map.FindKey(face_id + 1))
@@ -109,7 +118,7 @@ def _patch(
                 partners = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.partners[k]]
                 exclude = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.exclude[k]]
                 new_faces = clip_to_partners(
-                    new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end, exclude
+                    new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end, exclude, wall
                 )
             # Planar faces are cut to their partners' footprints instead (prisms of their outlines keep an offset
             # plane in the material); a cylinder's clip to its partners' sectors is about the axis only.
