@@ -40,23 +40,28 @@ pub struct RunArgs {
 
 /// `run_once`, and once more when the kernel crashed after the file was read (the sidecar ended by a signal
 /// it raised itself, such as SIGSEGV, not one sent from outside): OCCT's booleans crash now and then on input
-/// they handle on the next try, and a crash takes every kernel handle with it, so the part starts afresh.
+/// they handle on the next try, and a crash takes every kernel handle with it, so the part starts afresh. The
+/// second run has the booleans on one thread: the crashes come from their threads (a part that crashed in
+/// two runs of three on two threads ran clean on one), and a serial boolean gives the same result.
 pub fn run(args: &RunArgs) -> Result<Exit, Error> {
-    match run_once(args) {
+    match run_once(args, false) {
         Err(Error::Sidecar { error: SidecarError::Died { op, stderr }, .. })
             if op != "load_step" && !killed_from_outside(&stderr) =>
         {
-            eprintln!("midsurf: the OCCT sidecar crashed during '{op}'; running {} once more", args.input.display());
-            run_once(args)
+            eprintln!(
+                "midsurf: the OCCT sidecar crashed during '{op}'; running {} once more, its booleans on one thread",
+                args.input.display()
+            );
+            run_once(args, true)
         }
         other => other,
     }
 }
 
-fn run_once(args: &RunArgs) -> Result<Exit, Error> {
+fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     let (started, mut timings) = (Instant::now(), Timings::default());
     let files = Files::open(&args.input, &args.output, [&args.report, &args.summary, &args.csv, &args.preview])?;
-    let mut kernel = load::start_sidecar(&args.input)?;
+    let mut kernel = load::start_sidecar_with(&args.input, serial_booleans)?;
     let failed = |error| Error::Sidecar { path: args.input.clone(), error };
     let since = |t: Instant| t.elapsed().as_secs_f64();
 

@@ -158,6 +158,7 @@ fn a_kernel_crash_after_loading_is_tried_once_more_and_a_second_one_is_the_error
     let (code, stderr, files) = run_crashing(&dir, "fuse", true);
     assert_eq!(code, Some(0), "{stderr}");
     assert!(stderr.contains("crashed during 'fuse'; running") && stderr.contains("once more"), "{stderr}");
+    assert!(stderr.contains("its booleans on one thread"), "{stderr}");
     assert_eq!(files, vec!["mid.step".to_string()]);
 
     let dir = scratch("fault-crash-always");

@@ -53,3 +53,14 @@ def test_what_the_fuzzy_value_moves_is_no_loss():
     plate = horizontal()
     short = rectangle((0, 0, 1), (59.999, 0, 1), (59.999, 40, 1), (0, 40, 1))
     check_area_kept(History(plate, [short]), [plate], 1e-3)
+
+
+def test_the_fuse_runs_on_one_thread_when_asked(monkeypatch):
+    # midsurf runs a part again with MIDSURF_SERIAL_BOOLEANS=1 after OCCT crashed in it: the same split, serial.
+    faces = [horizontal(), vertical(30)]
+    monkeypatch.delenv("MIDSURF_SERIAL_BOOLEANS", raising=False)
+    assert general_fuse(faces, 1e-6).RunParallel()
+    monkeypatch.setenv("MIDSURF_SERIAL_BOOLEANS", "1")
+    serial = general_fuse(faces, 1e-6)
+    assert not serial.RunParallel()
+    assert all(serial.Modified(face).Size() == 2 for face in faces)

@@ -97,7 +97,13 @@ pub struct Sidecar {
 
 impl Sidecar {
     pub fn start() -> Result<Sidecar, SidecarError> {
-        let mut sidecar = Sidecar { launch: python::locate()?, client: None };
+        Sidecar::start_with(false)
+    }
+
+    /// A sidecar whose booleans run on one thread when `serial_booleans` (see `Launch`).
+    pub fn start_with(serial_booleans: bool) -> Result<Sidecar, SidecarError> {
+        let launch = python::Launch { serial_booleans, ..python::locate()? };
+        let mut sidecar = Sidecar { launch, client: None };
         sidecar.connected()?;
         Ok(sidecar)
     }

@@ -51,6 +51,9 @@ impl ProcessTransport {
         #[cfg(unix)]
         std::os::unix::process::CommandExt::process_group(&mut command, 0);
         command.env("MIDSURF_PARENT_PID", std::process::id().to_string());
+        if launch.serial_booleans {
+            command.env("MIDSURF_SERIAL_BOOLEANS", "1");
+        }
         let mut child = command.spawn().map_err(|e| SidecarError::Spawn {
             why: format!("{}: {e}; set MIDSURF_PYTHON or run scripts/setup", launch.python.display()),
         })?;

@@ -18,6 +18,9 @@ pub struct Launch {
     pub python: PathBuf,
     /// Put on `PYTHONPATH` so that `python -m midsurf_sidecar` finds the package.
     pub sidecar_dir: PathBuf,
+    /// Run OCCT's booleans on one thread (the sidecar's `MIDSURF_SERIAL_BOOLEANS`): their threads crash the
+    /// kernel now and then, so a part that crashed it runs again this way.
+    pub serial_booleans: bool,
 }
 
 const PACKAGE_MARKER: &str = "sidecar/midsurf_sidecar/__main__.py";
@@ -48,7 +51,7 @@ pub fn locate() -> Result<Launch, SidecarError> {
         },
     })?;
     let python = choose_python(std::env::var_os("MIDSURF_PYTHON").map(PathBuf::from), &root)?;
-    Ok(Launch { python, sidecar_dir: root.join("sidecar") })
+    Ok(Launch { python, sidecar_dir: root.join("sidecar"), serial_booleans: false })
 }
 
 fn choose_python(env_python: Option<PathBuf>, root: &Path) -> Result<PathBuf, SidecarError> {

@@ -2,6 +2,8 @@
 tools, faces fused where they meet, an edge clipped to a face, a patch's faces merged where they lie on one
 surface."""
 
+import os
+
 from OCP.BOPAlgo import BOPAlgo_Builder
 from OCP.BRepAlgoAPI import BRepAlgoAPI_BuilderAlgo, BRepAlgoAPI_Common, BRepAlgoAPI_Splitter
 from OCP.collections import List_TopoDS_Shape
@@ -13,6 +15,9 @@ from OCP.TopoDS import TopoDS_Shape
 from ..constants import AREA_KEPT_SHARE, CONFUSION, SAME_DOMAIN_ANGLE
 from ..protocol.errors import KernelError, one_line
 from .topology import boundary_length, indexed_map, subshapes, surface_props
+
+# MIDSURF_SERIAL_BOOLEANS=1 runs every boolean on one thread.
+SERIAL_VAR = "MIDSURF_SERIAL_BOOLEANS"
 
 
 def split(
@@ -47,8 +52,9 @@ def general_fuse(faces: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
         builder.AddArgument(face)
     builder.SetFuzzyValue(fuzzy)
     builder.SetNonDestructive(True)
-    # ~1.7x faster on 2 cores; the result (and its face and edge order) is the same as a serial run.
-    builder.SetRunParallel(True)
+    # ~1.7x faster on 2 cores; the result (and its face and edge order) is the same as a serial run. Now and
+    # then the threads crash OCCT: after such a crash midsurf runs the part again with SERIAL_VAR set.
+    builder.SetRunParallel(os.environ.get(SERIAL_VAR) != "1")
     builder.Perform()
     if builder.HasErrors():
         raise KernelError(f"BOPAlgo_Builder failed on {len(faces)} faces: {_alerts(builder)}")
