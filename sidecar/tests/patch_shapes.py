@@ -1,9 +1,10 @@
 """Hand-made mid-patches (compounds of planar rectangles) for the fuse and make_shells tests."""
 
-from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
 from OCP.gp import gp_Pnt
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Face, TopoDS_Shape
+
+from midsurf_sidecar.geom.topology import compound_of
 
 Point = tuple[float, float, float]
 
@@ -18,12 +19,7 @@ def rectangle(*corners: Point) -> TopoDS_Face:
 
 
 def compound(*shapes: TopoDS_Shape) -> TopoDS_Compound:
-    result = TopoDS_Compound()
-    builder = BRep_Builder()
-    builder.MakeCompound(result)
-    for shape in shapes:
-        builder.Add(result, shape)
-    return result
+    return compound_of(list(shapes))
 
 
 def horizontal() -> TopoDS_Face:

@@ -3,7 +3,7 @@
 from collections.abc import Iterator
 
 from OCP.Bnd import Bnd_Box
-from OCP.BRep import BRep_Tool
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
@@ -12,7 +12,17 @@ from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as I
 from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE, TopAbs_ShapeEnum
 from OCP.TopExp import TopExp, TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
+
+
+def compound_of(shapes: list[TopoDS_Shape]) -> TopoDS_Compound:
+    """The shapes as one compound, in their order."""
+    builder = BRep_Builder()
+    compound = TopoDS_Compound()
+    builder.MakeCompound(compound)
+    for shape in shapes:
+        builder.Add(compound, shape)
+    return compound
 
 
 def indexed_map(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> IndexedShapeMap:

@@ -10,7 +10,7 @@ grows the clipped edges back to the neighbouring patches.
 import math
 
 from OCP.Bnd import Bnd_Box
-from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import (
@@ -33,7 +33,7 @@ from ..constants import (
 from ..geom.booleans import split, unify
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import interior_point
-from ..geom.topology import ancestors, diagonal, indexed_map, surface_props
+from ..geom.topology import ancestors, compound_of, diagonal, indexed_map, surface_props
 from ..protocol.errors import KernelError
 from .wall_probe import WallProbe
 
@@ -98,7 +98,7 @@ def clip_to_partners(
     covered = [not e and any(_inside(c, p, fuzzy) for c in classifiers) for p, e in zip(points, elsewhere)]
     # Which pieces an uncovered one touches: a band between two covered ones is never a tongue.
     neighbours = _neighbours(splitter.Shape(), pieces) if not all(covered) else None
-    cover = _compound([f for f, c in zip(faces, covered) if c])
+    cover = compound_of([f for f, c in zip(faces, covered) if c])
     areas = [surface_props(piece).Mass() for piece in faces]
     kept = []
     for i, piece in enumerate(faces):
@@ -198,7 +198,7 @@ def _faces_near(solid: TopoDS_Shape, face: TopoDS_Face, margin: float, skins) ->
             if distance.IsDone() and distance.Value() > margin:
                 continue
         near.append(faces.FindKey(i))
-    return _compound(near) if near else None
+    return compound_of(near) if near else None
 
 
 def _boundary_leaves(face: TopoDS_Face, classifier: BRepClass3d_SolidClassifier, tolerance: float) -> bool:
@@ -255,15 +255,6 @@ def _reach(piece: TopoDS_Face, cover: TopoDS_Shape) -> float:
         if distance.IsDone():
             farthest = max(farthest, distance.Value())
     return farthest
-
-
-def _compound(faces: list[TopoDS_Shape]) -> TopoDS_Compound:
-    builder = BRep_Builder()
-    compound = TopoDS_Compound()
-    builder.MakeCompound(compound)
-    for face in faces:
-        builder.Add(compound, face)
-    return compound
 
 
 def _point(piece: TopoDS_Face):
