@@ -298,7 +298,7 @@ struct SolidJson<'a> {
 }
 
 fn inspect_command(path: PathBuf, json: bool, mesh: bool) -> Result<Exit, Error> {
-    let mut sidecar = load::start_sidecar(&path)?;
+    let mut sidecar = load::start_sidecar(&path, false)?;
     let part = load::load(&mut sidecar, &path, MeshRequest { mesh, tolerance: None })?;
     sidecar.shutdown();
     let file = path.display().to_string();
@@ -327,7 +327,7 @@ struct PairsJson<'a> {
 }
 
 fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exit, Error> {
-    let mut sidecar = load::start_sidecar(&path)?;
+    let mut sidecar = load::start_sidecar(&path, false)?;
     let part = load::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
     sidecar.shutdown();
     crate::checks::against_part(&params, &part).map_err(|p| Error::input(&path, p))?;

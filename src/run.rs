@@ -61,7 +61,7 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
 fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     let (started, mut timings) = (Instant::now(), Timings::default());
     let files = Files::open(&args.input, &args.output, [&args.report, &args.summary, &args.csv, &args.preview])?;
-    let mut kernel = load::start_sidecar_with(&args.input, serial_booleans)?;
+    let mut kernel = load::start_sidecar(&args.input, serial_booleans)?;
     let failed = |error| Error::Sidecar { path: args.input.clone(), error };
     let since = |t: Instant| t.elapsed().as_secs_f64();
 

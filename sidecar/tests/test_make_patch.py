@@ -581,7 +581,7 @@ def test_the_cut_to_the_solid_splits_by_the_faces_that_can_cut():
     from OCP.TopLoc import TopLoc_Location
     from OCP.gp import gp_Trsf, gp_Vec
 
-    from midsurf_sidecar.patch.face_clip import _faces_near
+    from midsurf_sidecar.geom.solid_boundary import SolidBoundary
     from midsurf_sidecar.patch.face_offset import offset_face
 
     tube = (Cylinder(20, 40) - Cylinder(18, 40)).wrapped
@@ -592,7 +592,7 @@ def test_the_cut_to_the_solid_splits_by_the_faces_that_can_cut():
     mid = offset_face(outer, -1.0)
 
     def near(skins):
-        found = _faces_near(tube, mid, 1e-6, skins)
+        found = SolidBoundary(tube).faces_near(mid, 1e-6, skins)
         return indexed_map(found, TopAbs_FACE).Size() if found is not None else 0
 
     assert faces.Size() == 4
@@ -601,4 +601,4 @@ def test_the_cut_to_the_solid_splits_by_the_faces_that_can_cut():
     # Moved 500 up, the face is near none of them: nothing can cut it.
     shift = gp_Trsf()
     shift.SetTranslation(gp_Vec(0.0, 0.0, 500.0))
-    assert _faces_near(tube, TopoDS.Face(mid.Moved(TopLoc_Location(shift))), 1e-6, []) is None
+    assert SolidBoundary(tube).faces_near(TopoDS.Face(mid.Moved(TopLoc_Location(shift))), 1e-6, []) is None

@@ -96,12 +96,8 @@ pub struct Sidecar {
 }
 
 impl Sidecar {
-    pub fn start() -> Result<Sidecar, SidecarError> {
-        Sidecar::start_with(false)
-    }
-
-    /// A sidecar whose booleans run on one thread when `serial_booleans` (see `Launch`).
-    pub fn start_with(serial_booleans: bool) -> Result<Sidecar, SidecarError> {
+    /// A sidecar, its booleans on one thread when `serial_booleans` (see `Launch`).
+    pub fn start(serial_booleans: bool) -> Result<Sidecar, SidecarError> {
         let launch = python::Launch { serial_booleans, ..python::locate()? };
         let mut sidecar = Sidecar { launch, client: None };
         sidecar.connected()?;

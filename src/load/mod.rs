@@ -33,15 +33,11 @@ pub struct MeshRequest {
     pub tolerance: Option<f64>,
 }
 
-/// Starts the sidecar for work on `path`, so that a broken install is reported against the file at hand.
-pub fn start_sidecar(path: &Path) -> Result<Sidecar, Error> {
-    start_sidecar_with(path, false)
-}
-
-/// `start_sidecar`, its booleans on one thread when `serial_booleans` (see `kernel::python::Launch`).
-pub fn start_sidecar_with(path: &Path, serial_booleans: bool) -> Result<Sidecar, Error> {
+/// Starts the sidecar for work on `path`, so that a broken install is reported against the file at hand; its
+/// booleans on one thread when `serial_booleans` (see `kernel::python::Launch`).
+pub fn start_sidecar(path: &Path, serial_booleans: bool) -> Result<Sidecar, Error> {
     check_input(path)?;
-    Sidecar::start_with(serial_booleans).map_err(|error| Error::Sidecar { path: path.to_path_buf(), error })
+    Sidecar::start(serial_booleans).map_err(|error| Error::Sidecar { path: path.to_path_buf(), error })
 }
 
 /// Problems we can see without the kernel, with a message a user can act on.

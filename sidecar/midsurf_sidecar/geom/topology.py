@@ -5,6 +5,8 @@ from collections.abc import Iterator
 from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as AncestorMap
@@ -13,6 +15,7 @@ from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE, TopAbs_ShapeEnum
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
+from OCP.gp import gp_Pnt
 
 
 def compound_of(shapes: list[TopoDS_Shape]) -> TopoDS_Compound:
@@ -23,6 +26,12 @@ def compound_of(shapes: list[TopoDS_Shape]) -> TopoDS_Compound:
     for shape in shapes:
         builder.Add(compound, shape)
     return compound
+
+
+def distance_to(point: gp_Pnt, shape: TopoDS_Shape) -> float | None:
+    """The distance from `point` to `shape`; None when OCCT cannot tell."""
+    distance = BRepExtrema_DistShapeShape(BRepBuilderAPI_MakeVertex(point).Vertex(), shape)
+    return distance.Value() if distance.IsDone() else None
 
 
 def indexed_map(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> IndexedShapeMap:

@@ -9,22 +9,17 @@ grows the clipped edges back to the neighbouring patches.
 
 import math
 
-from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
-from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepBuilderAPI import (
-    BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon, BRepBuilderAPI_MakeVertex, BRepBuilderAPI_Transform,
-)
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon, BRepBuilderAPI_Transform
 from OCP.BRepClass3d import BRepClass3d_SolidClassifier
-from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism, BRepPrimAPI_MakeRevol
 from OCP.BRepTools import BRepTools
 from OCP.BRepGProp import BRepGProp
 from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
 from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN, TopAbs_OUT
-from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
 from ..constants import (
@@ -33,7 +28,8 @@ from ..constants import (
 from ..geom.booleans import split, unify
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import interior_point
-from ..geom.topology import ancestors, compound_of, diagonal, indexed_map, surface_props
+from ..geom.solid_boundary import SolidBoundary
+from ..geom.topology import ancestors, compound_of, diagonal, distance_to, indexed_map, surface_props
 from ..protocol.errors import KernelError
 from .wall_probe import WallProbe
 
@@ -124,7 +120,7 @@ def clip_to_partners(
 
 
 def within_solid(
-    face: TopoDS_Face, solid: TopoDS_Shape, fuzzy: float, negligible: float, skins: list[TopoDS_Shape] = ()
+    face: TopoDS_Face, solid: SolidBoundary, fuzzy: float, negligible: float, skins: list[TopoDS_Shape] = ()
 ) -> list[TopoDS_Face]:
     """The pieces of a curved mid-patch face that lie in `solid`; [face] when none lies outside, when all that
     does reaches no farther than `negligible` past the cut, or when OCCT gives up. Offsetting a curved face keeps
@@ -138,8 +134,8 @@ def within_solid(
     wall thins to nothing under it, so each is a tool of the split only when it comes within `fuzzy` of the
     face. The distance is far cheaper than a split by a surface parallel to the face, the slowest kind of
     split (seconds for one offset B-spline face)."""
-    classifier = BRepClass3d_SolidClassifier(solid)
-    cut_by = _split_by_solid(face, solid, classifier, fuzzy, skins)
+    classifier = solid.classifier
+    cut_by = _split_by_solid(face, solid, fuzzy, skins)
     if cut_by is None:
         return [face]
     shape, pieces = cut_by
@@ -157,19 +153,17 @@ def within_solid(
     return [piece for piece, keep in zip(faces, inside) if keep]
 
 
-def _split_by_solid(
-    face: TopoDS_Face, solid: TopoDS_Shape, classifier: BRepClass3d_SolidClassifier, fuzzy: float, skins
-):
+def _split_by_solid(face: TopoDS_Face, solid: SolidBoundary, fuzzy: float, skins):
     """(the split shape, its faces) of the face split by the solid's boundary, None when it is not cut. OCCT's
     fuzzy split can miss a section running at a shallow angle to the face's own rim (a tube's wall cut by an
-    oblique plane): when the face's boundary runs out of the solid (`classifier`'s) and the fuzzy split gives one
+    oblique plane): when the face's boundary runs out of the solid and the fuzzy split gives one
     piece, it splits again without fuzz. Only the solid's faces near the face cut it (a split by the whole
     solid costs as much as all its faces), and `skins` only when they touch it."""
-    near = _faces_near(solid, face, fuzzy, skins)
+    near = solid.faces_near(face, fuzzy, skins)
     if near is None:
         return None
     for tolerance in (fuzzy, 0.0):
-        if tolerance == 0.0 and not _boundary_leaves(face, classifier, fuzzy):
+        if tolerance == 0.0 and not _boundary_leaves(face, solid.classifier, fuzzy):
             return None
         splitter = split(face, [near], tolerance)
         if splitter is not None:
@@ -177,28 +171,6 @@ def _split_by_solid(
             if pieces.Size() >= 2:
                 return splitter.Shape(), pieces
     return None
-
-
-def _faces_near(solid: TopoDS_Shape, face: TopoDS_Face, margin: float, skins) -> TopoDS_Compound | None:
-    """A compound of the faces of `solid` whose bounding boxes come within `margin` of the face's, of `skins`
-    only those that come within `margin` of the face itself; None when there are none. Boxes from the
-    geometry, not a mesh: loose around a B-spline, never short of it."""
-    box = Bnd_Box()
-    BRepBndLib.Add_s(face, box, False)
-    box.Enlarge(max(margin, CONFUSION))
-    faces = indexed_map(solid, TopAbs_FACE)
-    near = []
-    for i in range(1, faces.Size() + 1):
-        other = Bnd_Box()
-        BRepBndLib.Add_s(faces.FindKey(i), other, False)
-        if box.IsOut(other):
-            continue
-        if any(faces.FindKey(i).IsSame(s) for s in skins):
-            distance = BRepExtrema_DistShapeShape(face, faces.FindKey(i))
-            if distance.IsDone() and distance.Value() > margin:
-                continue
-        near.append(faces.FindKey(i))
-    return compound_of(near) if near else None
 
 
 def _boundary_leaves(face: TopoDS_Face, classifier: BRepClass3d_SolidClassifier, tolerance: float) -> bool:
@@ -251,9 +223,9 @@ def _reach(piece: TopoDS_Face, cover: TopoDS_Shape) -> float:
     a tongue standing off one its length, however narrow it is."""
     farthest = 0.0
     for point in _edge_points(piece, [0.0, 0.5, 1.0]):
-        distance = BRepExtrema_DistShapeShape(BRepBuilderAPI_MakeVertex(point).Vertex(), cover)
-        if distance.IsDone():
-            farthest = max(farthest, distance.Value())
+        distance = distance_to(point, cover)
+        if distance is not None:
+            farthest = max(farthest, distance)
     return farthest
 
 

@@ -13,6 +13,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face, TopoDS_Shape
 
 from ..constants import CONFUSION
 from ..geom.face_measure import measure
+from ..geom.solid_boundary import SolidBoundary
 from ..geom.topology import IndexedShapeMap
 from ..geom.vectors import Vec
 from ..protocol.errors import OpError, one_line
@@ -104,9 +105,10 @@ def _patch(
     builder.MakeCompound(compound)
     described = []
     filled = 0
+    solid = SolidBoundary(options.solid) if options.solid is not None else None
     wall = None
-    if clip is not None and clip.thickness is not None and options.solid is not None:
-        wall = WallProbe(options.solid, clip.thickness, clip.to_mid, clip.wall_max)
+    if clip is not None and clip.thickness is not None and solid is not None:
+        wall = WallProbe(solid, clip.thickness, clip.to_mid, clip.wall_max)
     for k, face_id in enumerate(face_ids):
         try:
             source = TopoDS.Face(face_map.FindKey(face_id + 1))
@@ -122,12 +124,12 @@ def _patch(
                 )
             # Planar faces are cut to their partners' footprints instead (prisms of their outlines keep an offset
             # plane in the material); a cylinder's clip to its partners' sectors is about the axis only.
-            if options.solid is not None and not is_plane(new_faces[0]):
+            if solid is not None and not is_plane(new_faces[0]):
                 fuzzy = clip.fuzzy if clip is not None else CONFUSION
                 skins = [face_id, *(clip.partners[k] if clip is not None else [])]
                 skins = [face_map.FindKey(f + 1) for f in skins]
                 new_faces = [
-                    piece for f in new_faces for piece in within_solid(f, options.solid, fuzzy, options.negligible, skins)
+                    piece for f in new_faces for piece in within_solid(f, solid, fuzzy, options.negligible, skins)
                 ]
             if options.reverse:
                 new_faces = [TopoDS.Face(f.Reversed()) for f in new_faces]

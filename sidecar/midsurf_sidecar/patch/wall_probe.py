@@ -5,9 +5,6 @@ pieces in Rust (stitch::peel)."""
 
 import math
 
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
-from OCP.BRepClass3d import BRepClass3d_SolidClassifier
-from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.IntCurvesFace import IntCurvesFace_ShapeIntersector
 from OCP.TopAbs import TopAbs_IN
 from OCP.TopoDS import TopoDS_Face, TopoDS_Shape
@@ -16,7 +13,8 @@ from OCP.gp import gp_Ax2, gp_Dir, gp_Lin, gp_Pnt, gp_Vec
 from ..constants import CONFUSION, OWN_WALL_FACTOR, TANGENT_DIRECTIONS
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import area_samples
-from ..geom.topology import diagonal
+from ..geom.solid_boundary import SolidBoundary
+from ..geom.topology import diagonal, distance_to
 
 
 class WallProbe:
@@ -24,13 +22,12 @@ class WallProbe:
     face's outward normal, and the thickest wall that pairs whatever its width (t_max): what lies under a point
     of the patch."""
 
-    def __init__(self, solid: TopoDS_Shape, thickness: float, to_mid: float, wall_max: float):
+    def __init__(self, solid: SolidBoundary, thickness: float, to_mid: float, wall_max: float):
         self.solid = solid
         self.thickness = thickness
         self.to_mid = to_mid
         self.wall_max = wall_max
         self._rays = None
-        self._classifier = None
 
     def tongue(self, piece: TopoDS_Face, cover: TopoDS_Shape, reach: float) -> bool:
         """Whether `piece` is a tongue: most of its area farther than `reach` from `cover` (the covered pieces
@@ -42,8 +39,8 @@ class WallProbe:
             sample = normals.at(u, v)
             if sample is None:
                 continue
-            distance = BRepExtrema_DistShapeShape(BRepBuilderAPI_MakeVertex(gp_Pnt(*sample[0])).Vertex(), cover)
-            if not distance.IsDone() or distance.Value() <= reach:
+            distance = distance_to(gp_Pnt(*sample[0]), cover)
+            if distance is None or distance <= reach:
                 continue
             far += area
             if self.on_other_wall(*sample):
@@ -59,11 +56,11 @@ class WallProbe:
         if self._rays is None:
             # Loaded on first use: most clips have no tongue to judge.
             self._rays = IntCurvesFace_ShapeIntersector()
-            self._rays.Load(self.solid, CONFUSION)
-            self._classifier = BRepClass3d_SolidClassifier(self.solid)
+            self._rays.Load(self.solid.shape, CONFUSION)
         origin = gp_Pnt(*point).Translated(gp_Vec(*normal) * self.to_mid)
-        self._classifier.Perform(origin, CONFUSION)
-        if self._classifier.State() != TopAbs_IN:
+        classifier = self.solid.classifier
+        classifier.Perform(origin, CONFUSION)
+        if classifier.State() != TopAbs_IN:
             return True
         across = self._across(origin, gp_Dir(*normal))
         if across is None or across <= OWN_WALL_FACTOR * self.thickness:
