@@ -109,3 +109,42 @@ def test_a_ray_the_pole_hull_rules_out_meets_nothing_on_the_exact_surface():
 
 def xyz_of(p):
     return (p.X(), p.Y(), p.Z())
+
+
+def holed_faces():
+    """A 40 x 30 plate with 12 round holes and a square one, and a cylinder's side (its seam used twice)."""
+    from build123d import Box, Cylinder, Pos
+
+    plate = Box(40, 30, 2) - Pos(12, 8, 0) * Box(5, 5, 4)
+    for i in range(4):
+        for j in range(3):
+            plate -= Pos(-15 + 8 * i, -10 + 8 * j, 0) * Cylinder(1.5, 4)
+    top = max(plate.faces(), key=lambda f: f.center().Z).wrapped
+    side = [f for f in Cylinder(5, 8).faces() if f.geom_type.name == "CYLINDER"][0].wrapped
+    return [top, side]
+
+
+def test_the_outward_direction_points_off_the_face_at_every_edge_of_a_face_with_holes():
+    """sample_edge's outward side, checked (FaceSides) by the edge's own wire and the outer one: a little inward
+    of every sample the kernel's classifier of the whole face says IN, a little outward OUT (seams, with the face
+    on both sides, left out)."""
+    from OCP.BRepClass import BRepClass_FaceClassifier
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_IN, TopAbs_OUT
+
+    from midsurf_sidecar.joints.edge_probe import FaceSides, sample_edge
+
+    checked = 0
+    for face in holed_faces():
+        sides = FaceSides(face)
+        explorer = TopExp_Explorer(face, TopAbs_EDGE)
+        while explorer.More():
+            edge = TopoDS.Edge(explorer.Current())
+            explorer.Next()
+            if BRep_Tool.Degenerated_s(edge) or BRep_Tool.IsClosed_s(edge, face):
+                continue
+            for sample in sample_edge(face, edge, 5, sides)[1:-1]:
+                for sign, expected in ((-1.0, TopAbs_IN), (1.0, TopAbs_OUT)):
+                    point = gp_Pnt(*(p + sign * 0.05 * o for p, o in zip(sample.point, sample.outward)))
+                    assert BRepClass_FaceClassifier(face, point, 1e-7).State() == expected
+                    checked += 1
+    assert checked == 2 * 3 * (4 + 4 + 12 + 2)

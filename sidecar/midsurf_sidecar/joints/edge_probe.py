@@ -11,7 +11,7 @@ import functools
 from dataclasses import dataclass
 from typing import Any
 
-from OCP.BRep import BRep_Tool
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
@@ -30,10 +30,11 @@ from OCP.Geom import (
 from OCP.GeomAbs import GeomAbs_C1
 from OCP.GeomConvert import GeomConvert, GeomConvert_ApproxSurface
 from OCP.GeomAPI import GeomAPI_IntCS
-from OCP.gp import gp_Dir, gp_Lin, gp_Pnt, gp_Vec
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_IN, TopAbs_OUT, TopAbs_REVERSED
+from OCP.gp import gp_Dir, gp_Lin, gp_Pnt, gp_Pnt2d, gp_Vec
+from OCP.IntTools import IntTools_FClass2d
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_IN, TopAbs_OUT, TopAbs_REVERSED, TopAbs_State, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
 from ..constants import (
     HULL_DIRECTIONS,
@@ -57,21 +58,68 @@ class EdgeSample:
     outward: Vec
 
 
-def oriented_edge(face: TopoDS_Face, edge: TopoDS_Shape) -> TopoDS_Edge:
-    """The edge as the face's boundary runs through it (orientation composed with the face's)."""
-    explorer = TopExp_Explorer(face, TopAbs_EDGE)
-    while explorer.More():
-        if explorer.Current().IsSame(edge):
-            return TopoDS.Edge(explorer.Current())
-        explorer.Next()
-    raise BadArgs("the edge is not an edge of the face")
+class FaceSides:
+    """One face's boundary, walked once for all of its edges: the oriented edges by shape, and per wire a 2D
+    classifier of the face bounded by its outer wire and that wire alone, built on first use. Which side of
+    an edge the face lies on is a matter of the edge's own wire; the whole face's classifier walks every wire,
+    so probing a face with n holes cost n^2 (5.8 s of a 900-hole plate's 13 s)."""
+
+    def __init__(self, face: TopoDS_Face) -> None:
+        self.face = face
+        self._edges: dict[int, list[TopoDS_Edge]] = {}
+        explorer = TopExp_Explorer(face, TopAbs_EDGE)
+        while explorer.More():
+            current = explorer.Current()
+            self._edges.setdefault(hash(current), []).append(TopoDS.Edge(current))
+            explorer.Next()
+        forward = TopoDS.Face(face.Oriented(TopAbs_FORWARD))
+        outer = BRepTools.OuterWire_s(forward)
+        self._forward, self._outer = forward, outer
+        self._wires: list[TopoDS_Wire] = []
+        self._wire_of: dict[int, int] = {}
+        wires = TopExp_Explorer(forward, TopAbs_WIRE)
+        while wires.More():
+            wire = TopoDS.Wire(wires.Current())
+            edges = TopExp_Explorer(wire, TopAbs_EDGE)
+            while edges.More():
+                self._wire_of.setdefault(hash(edges.Current()), len(self._wires))
+                edges.Next()
+            self._wires.append(wire)
+            wires.Next()
+        self._classifiers: dict[int, IntTools_FClass2d] = {}
+        self.tolerance = BRep_Tool.Tolerance_s(face)
+        self.side_step = max(SIDE_STEP_RATIO * diagonal(face), SIDE_STEP_TOLERANCES * self.tolerance)
+
+    def oriented_edge(self, edge: TopoDS_Shape) -> TopoDS_Edge:
+        """The edge as the face's boundary runs through it (orientation composed with the face's): the first
+        use in the face's order, as a seam is used twice."""
+        for candidate in self._edges.get(hash(edge), []):
+            if candidate.IsSame(edge):
+                return candidate
+        raise BadArgs("the edge is not an edge of the face")
+
+    def state(self, edge: TopoDS_Shape, u: float, v: float) -> TopAbs_State:
+        """IN, OUT or ON the face near `edge` at (u, v), by the face's outer wire and the edge's wire.
+        IntTools_FClass2d tests polygons of the wires and falls back to the exact classifier within their sag
+        of them, so it answers as BRepClass_FaceClassifier does away from the other wires."""
+        index = self._wire_of[hash(edge)]
+        if index not in self._classifiers:
+            bounded = TopoDS.Face(self._forward.EmptyCopied())
+            builder = BRep_Builder()
+            builder.Add(bounded, self._outer)
+            if not self._wires[index].IsSame(self._outer):
+                builder.Add(bounded, self._wires[index])
+            self._classifiers[index] = IntTools_FClass2d(bounded, self.tolerance)
+        return self._classifiers[index].Perform(gp_Pnt2d(u, v))
 
 
-def sample_edge(face: TopoDS_Face, edge: TopoDS_Shape, samples: int) -> list[EdgeSample]:
-    """Samples at evenly spaced parameters of the edge's curve, in the curve's direction."""
+def sample_edge(face: TopoDS_Face, edge: TopoDS_Shape, samples: int, sides: FaceSides | None = None) -> list[EdgeSample]:
+    """Samples at evenly spaced parameters of the edge's curve, in the curve's direction. `sides`: the face's
+    boundary when several of its edges are sampled."""
     if samples < 2:
         raise BadArgs("at least 2 samples per edge")
-    oriented = oriented_edge(face, edge)
+    sides = sides or FaceSides(face)
+    oriented = sides.oriented_edge(edge)
     if BRep_Tool.Degenerated_s(oriented):
         raise BadArgs("a degenerated edge has no outward direction")
     curve = BRepAdaptor_Curve(oriented)
@@ -81,6 +129,7 @@ def sample_edge(face: TopoDS_Face, edge: TopoDS_Shape, samples: int) -> list[Edg
     reversed_face = face.Orientation() == TopAbs_REVERSED
     first, last = curve.FirstParameter(), curve.LastParameter()
     out = []
+    middle = None
     for k in range(samples):
         s = first + (last - first) * k / (samples - 1)
         point, tangent = gp_Pnt(), gp_Vec()
@@ -98,22 +147,34 @@ def sample_edge(face: TopoDS_Face, edge: TopoDS_Shape, samples: int) -> list[Edg
         outward = cross(t, normal)
         outward = scale(outward, 1.0 / norm(outward))
         out.append(EdgeSample(xyz(point), normal, outward))
-    if _runs_backwards(face, out):
+        if k == samples // 2:
+            middle = ((uv.X(), uv.Y()), xyz(su), xyz(sv))
+    if _runs_backwards(sides, edge, out[samples // 2], middle):
         out = [EdgeSample(s.point, s.normal, scale(s.outward, -1.0)) for s in out]
     return out
 
 
-def _runs_backwards(face: TopoDS_Face, samples: list[EdgeSample]) -> bool:
+def _runs_backwards(
+    sides: FaceSides, edge: TopoDS_Shape, sample: EdgeSample, at: tuple[tuple[float, float], Vec, Vec]
+) -> bool:
     """Guards the orientation rule: whether a point a little inward of the middle sample is off the face and
-    one a little outward on it (the rule got the side wrong)."""
-    middle = samples[len(samples) // 2]
-    tolerance = BRep_Tool.Tolerance_s(face)
-    step = max(SIDE_STEP_RATIO * diagonal(face), SIDE_STEP_TOLERANCES * tolerance)
-    inner = add_scaled(middle.point, middle.outward, -step)
-    outer = add_scaled(middle.point, middle.outward, step)
-    state_in = BRepClass_FaceClassifier(face, gp_Pnt(*inner), tolerance).State()
-    state_out = BRepClass_FaceClassifier(face, gp_Pnt(*outer), tolerance).State()
+    one a little outward on it (the rule got the side wrong). `at`: the sample's (u, v) and the surface's
+    derivatives there, which turn the step along `outward` into a step in (u, v)."""
+    (u, v), su, sv = at
+    du, dv = _uv_step(su, sv, scale(sample.outward, sides.side_step))
+    state_in = sides.state(edge, u - du, v - dv)
+    state_out = sides.state(edge, u + du, v + dv)
     return state_in == TopAbs_OUT and state_out == TopAbs_IN
+
+
+def _uv_step(su: Vec, sv: Vec, step: Vec) -> tuple[float, float]:
+    """The (du, dv) whose image su du + sv dv is nearest `step` (least squares on the first fundamental form)."""
+    e, f, g = dot(su, su), dot(su, sv), dot(sv, sv)
+    a, b = dot(su, step), dot(sv, step)
+    det = e * g - f * f
+    if det <= 0.0:
+        raise KernelError("edge sample: singular surface metric")
+    return (g * a - f * b) / det, (e * b - f * a) / det
 
 
 class PoleHull:
@@ -280,9 +341,12 @@ class TargetFaces:
 def probe(edges: list[tuple[TopoDS_Face, TopoDS_Shape, int]], targets: TargetFaces, samples: int, reach: float) -> list[dict[str, Any]]:
     """`edges`: (face, edge, own face index). One reply entry per edge."""
     out = []
+    sides: dict[int, FaceSides] = {}
     for face, edge, own in edges:
         entry: dict[str, list[Any]] = {"points": [], "normals": [], "outward": [], "hits": []}
-        sampled = sample_edge(face, edge, samples)
+        if own not in sides:
+            sides[own] = FaceSides(face)
+        sampled = sample_edge(face, edge, samples, sides[own])
         candidates = targets.near(sampled, reach, {own})
         for sample in sampled:
             entry["points"].append(list(sample.point))
