@@ -1,6 +1,8 @@
 //! Exact area of the intersection of 2D triangles (Sutherland-Hodgman against a convex clip polygon).
 
 use glam::DVec2;
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{RTree, AABB};
 
 /// Signed area of a polygon (counter-clockwise positive).
 pub fn signed_area(poly: &[DVec2]) -> f64 {
@@ -57,26 +59,36 @@ pub fn bounds(t: &[DVec2; 3]) -> (DVec2, DVec2) {
 }
 
 /// Area of the intersection of two triangle soups, each a partition of a region without self-overlap
-/// (a face's mesh projected to 2D). Triangles of `b` are sorted by their lower x bound and swept.
+/// (a face's mesh projected to 2D). Triangles of `b` are found by box in an R-tree (a sweep over x alone
+/// tested every triangle to the left of each one: n^2 on a large face, 4 s of a 2,500-hole plate's
+/// pairing) and summed in the order of their lower x bound, so the sum is the same to the last bit.
 pub fn soup_overlap(a: &[[DVec2; 3]], b: &[[DVec2; 3]]) -> f64 {
-    let mut b_sorted: Vec<(DVec2, DVec2, usize)> = b
+    let mut order: Vec<usize> = (0..b.len()).collect();
+    order.sort_by(|&x, &y| bounds(&b[x]).0.x.total_cmp(&bounds(&b[y]).0.x));
+    let mut rank = vec![0; b.len()];
+    for (r, &i) in order.iter().enumerate() {
+        rank[i] = r;
+    }
+    let boxes: Vec<GeomWithData<Rectangle<[f64; 2]>, usize>> = b
         .iter()
         .enumerate()
         .map(|(i, t)| {
             let (lo, hi) = bounds(t);
-            (lo, hi, i)
+            GeomWithData::new(Rectangle::from_corners(lo.to_array(), hi.to_array()), i)
         })
         .collect();
-    b_sorted.sort_by(|x, y| x.0.x.total_cmp(&y.0.x));
+    let tree = RTree::bulk_load(boxes);
     let mut total = 0.0;
+    let mut near = Vec::new();
     for ta in a {
         let (lo, hi) = bounds(ta);
-        let end = b_sorted.partition_point(|(blo, _, _)| blo.x <= hi.x);
-        for (blo, bhi, i) in &b_sorted[..end] {
-            if bhi.x < lo.x || bhi.y < lo.y || blo.y > hi.y {
-                continue;
-            }
-            total += triangle_overlap(*ta, b[*i]);
+        near.clear();
+        near.extend(
+            tree.locate_in_envelope_intersecting(&AABB::from_corners(lo.to_array(), hi.to_array())).map(|g| g.data),
+        );
+        near.sort_unstable_by_key(|&i| rank[i]);
+        for &i in &near {
+            total += triangle_overlap(*ta, b[i]);
         }
     }
     total
@@ -109,5 +121,26 @@ mod tests {
     fn clockwise_triangles_are_handled() {
         let a = [v(0.0, 0.0), v(0.0, 1.0), v(1.0, 0.0)];
         assert!((triangle_overlap(a, a) - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn soups_overlap_as_every_pair_of_their_triangles_does() {
+        // Two triangulated grids (one rotated and shifted): the tree finds every pair a scan of all pairs does.
+        let grid = |n: usize, angle: f64, shift: DVec2| {
+            let r = DVec2::from_angle(angle);
+            let mut t = Vec::new();
+            for i in 0..n {
+                for j in 0..n {
+                    let p = |a: usize, b: usize| r.rotate(v(a as f64, b as f64 * 0.7)) + shift;
+                    t.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+                    t.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+                }
+            }
+            t
+        };
+        let (a, b) = (grid(12, 0.0, DVec2::ZERO), grid(10, 0.3, v(2.5, -1.0)));
+        let scan: f64 = a.iter().flat_map(|&ta| b.iter().map(move |&tb| triangle_overlap(ta, tb))).sum();
+        assert!(scan > 10.0);
+        assert!((soup_overlap(&a, &b) - scan).abs() < 1e-9 * scan, "{} vs {scan}", soup_overlap(&a, &b));
     }
 }

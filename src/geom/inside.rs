@@ -6,7 +6,7 @@
 //! the rays of one point met some thousand triangles that way, and the point tests took 2 of its 13 s.
 
 use glam::DVec3;
-use rstar::{RTree, RTreeObject, SelectionFunction, AABB};
+use rstar::{Envelope, RTree, RTreeObject, SelectionFunction, AABB};
 
 use super::ray::hit_triangle;
 use crate::model::face_graph::FaceGraph;
@@ -82,8 +82,17 @@ impl SolidMesh {
     /// Distances along `dir` from `p` to the triangles the ray meets among those whose boxes touch the segment
     /// of length `reach`.
     fn hits(&self, p: DVec3, dir: DVec3, reach: f64) -> impl Iterator<Item = f64> + '_ {
+        // A triangle counts when its box meets the box of the segment, whether or not the segment itself
+        // meets the box: at a point on the mesh, which of the triangles around it count decides the parity of
+        // a ray, and this rule is the one the answers were made with. The walk finds those triangles among
+        // the ones whose widened boxes the segment meets, which holds every triangle the ray hits.
+        let end = p + dir * reach;
+        let query = AABB::from_corners(p.min(end).to_array(), p.max(end).to_array());
         let segment = Segment { origin: p, inverse: dir.recip(), reach, margin: self.margin };
-        self.tree.locate_with_selection_function(segment).filter_map(move |t| hit_triangle(p, dir, t.corners))
+        self.tree
+            .locate_with_selection_function(segment)
+            .filter(move |t| t.envelope.intersects(&query))
+            .filter_map(move |t| hit_triangle(p, dir, t.corners))
     }
 }
 

@@ -87,6 +87,8 @@ class FaceSides:
             self._wires.append(wire)
             wires.Next()
         self._classifiers: dict[int, IntTools_FClass2d] = {}
+        # Bounded by the face's (u, v) range, which takes a walk of every edge's pcurve to find.
+        self.surface = BRepAdaptor_Surface(face, True)
         self.tolerance = BRep_Tool.Tolerance_s(face)
         self.side_step = max(SIDE_STEP_RATIO * diagonal(face), SIDE_STEP_TOLERANCES * self.tolerance)
 
@@ -124,7 +126,7 @@ def sample_edge(face: TopoDS_Face, edge: TopoDS_Shape, samples: int, sides: Face
         raise BadArgs("a degenerated edge has no outward direction")
     curve = BRepAdaptor_Curve(oriented)
     curve2d = BRepAdaptor_Curve2d(oriented, face)
-    surface = BRepAdaptor_Surface(face, True)
+    surface = sides.surface
     reversed_edge = oriented.Orientation() == TopAbs_REVERSED
     reversed_face = face.Orientation() == TopAbs_REVERSED
     first, last = curve.FirstParameter(), curve.LastParameter()
