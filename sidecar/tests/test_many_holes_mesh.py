@@ -63,3 +63,23 @@ def test_a_sheet_with_many_holes_meshes_completely_and_outward():
         assert math.isclose(area, face["area"], rel_tol=0.01), "the holes' polygons are close to circles"
         assert all(abs(p[2] - face["point"][2]) < 1e-9 for p in v), "nodes on the face's plane"
         assert not any(abs(p[0]) > side / 2 + 1e-9 or abs(p[1]) > side / 2 + 1e-9 for p in v)
+
+
+def test_area_samples_of_a_face_with_many_holes_cover_it_and_are_on_it():
+    """The samples interior_point falls back to when a face's UV centre is in a hole (it is here: N is odd)
+    come from the same scalable mesher: they stand for the face's area, and each lies on the face."""
+    from OCP.BRepClass import BRepClass_FaceClassifier
+    from OCP.gp import gp_Pnt2d
+    from OCP.TopAbs import TopAbs_IN
+
+    from midsurf_sidecar.geom.face_meshing import has_many_wires
+    from midsurf_sidecar.geom.face_point import area_samples
+    from midsurf_sidecar.geom.topology import surface_props
+
+    solid, side = perforated_sheet()
+    faces = indexed_map(solid, TopAbs_FACE)
+    sheet = next(TopoDS.Face(faces.FindKey(k)) for k in range(1, faces.Size() + 1) if has_many_wires(TopoDS.Face(faces.FindKey(k))))
+    samples = area_samples(sheet, side * math.sqrt(2.0))
+    area = surface_props(sheet).Mass()
+    assert math.isclose(sum(a for a, _, _ in samples), area, rel_tol=0.01)
+    assert all(BRepClass_FaceClassifier(sheet, gp_Pnt2d(u, v), 1e-7).State() == TopAbs_IN for _, u, v in samples)

@@ -4,24 +4,15 @@ from typing import Any
 
 from OCP.BRep import BRep_Tool
 from OCP.BRepLib import BRepLib_ToolTriangulatedShape
-from OCP.BRepMesh import (
-    BRepMesh_DelabellaMeshAlgoFactory,
-    BRepMesh_EdgeDiscret,
-    BRepMesh_FaceDiscret,
-    BRepMesh_IncrementalMesh,
-    BRepMesh_ModelBuilder,
-    BRepMesh_ModelHealer,
-    BRepMesh_ModelPostProcessor,
-    BRepMesh_ModelPreProcessor,
-)
+from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
-from OCP.IMeshTools import IMeshTools_Context
-from OCP.TopAbs import TopAbs_FACE, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
-from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
-from ..constants import MANY_WIRES, MESH_ANGULAR_DEFLECTION, MIN_RELATIVE_MESH_TOLERANCE
+from ..constants import MESH_ANGULAR_DEFLECTION, MIN_RELATIVE_MESH_TOLERANCE
+from ..geom.face_meshing import has_many_wires, mesh_delabella
 from ..geom.topology import diagonal
 from ..protocol.errors import BadArgs, KernelError
 
@@ -42,44 +33,14 @@ def mesh_shape(shape: TopoDS_Shape, tolerance: float) -> None:
     explorer = TopExp_Explorer(shape, TopAbs_FACE)
     while explorer.More():
         face = TopoDS.Face(explorer.Current())
-        if _wire_count(face) > MANY_WIRES:
-            _mesh_delabella(face, tolerance)
+        if has_many_wires(face):
+            mesh_delabella(face, tolerance, MESH_ANGULAR_DEFLECTION)
         explorer.Next()
     # Faces meshed above keep their triangulation (BRepMesh keeps a mesh as fine as asked), and so do the
     # discretised edges their neighbours share with them.
     mesher = BRepMesh_IncrementalMesh(shape, tolerance, False, MESH_ANGULAR_DEFLECTION, False)
     if not mesher.IsDone():
         raise KernelError(f"BRepMesh_IncrementalMesh failed (tolerance {tolerance} mm)")
-
-
-def _wire_count(face: TopoDS_Face) -> int:
-    count = 0
-    it = TopoDS_Iterator(face)
-    while it.More():
-        count += it.Value().ShapeType() == TopAbs_WIRE
-        it.Next()
-    return count
-
-
-def _mesh_delabella(face: TopoDS_Face, tolerance: float) -> None:
-    """Triangulates one face as mesh_shape would, but with the Delabella algorithm."""
-    # BRepMesh_Context is not wrapped by OCP: the same context, assembled from its parts.
-    context = IMeshTools_Context()
-    context.SetModelBuilder(BRepMesh_ModelBuilder())
-    context.SetEdgeDiscret(BRepMesh_EdgeDiscret())
-    context.SetModelHealer(BRepMesh_ModelHealer())
-    context.SetPreProcessor(BRepMesh_ModelPreProcessor())
-    context.SetFaceDiscret(BRepMesh_FaceDiscret(BRepMesh_DelabellaMeshAlgoFactory()))
-    context.SetPostProcessor(BRepMesh_ModelPostProcessor())
-    mesher = BRepMesh_IncrementalMesh()
-    mesher.SetShape(face)
-    params = mesher.ChangeParameters()
-    params.Deflection, params.Angle = tolerance, MESH_ANGULAR_DEFLECTION
-    params.Relative, params.InParallel = False, False
-    mesher.Perform(context)
-    if not mesher.IsDone():
-        wires = _wire_count(face)
-        raise KernelError(f"BRepMesh (Delabella) failed on a face of {wires} wires (tolerance {tolerance} mm)")
 
 
 def face_mesh(face: TopoDS_Face, reversed_face: bool) -> dict[str, Any]:

@@ -8,7 +8,6 @@ from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve2d, BRepAdaptor_Surface
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.BRepClass import BRepClass_FaceClassifier
-from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
 from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec, gp_Vec2d
 from OCP.TopAbs import TopAbs_IN
@@ -19,6 +18,7 @@ from ..constants import (
     BESIDE_EDGE_STEPS, FALLBACK_ANGLE, FALLBACK_DEFLECTION_RATIO, MAX_AREA_SAMPLES, SINGULAR_METRIC,
 )
 from ..protocol.errors import KernelError
+from .face_meshing import mesh_face
 from .face_normals import OutwardNormals
 from .topology import curve_edges
 from .vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
@@ -106,7 +106,7 @@ def area_samples(face: TopoDS_Face, diagonal: float, step: float | None = None) 
     untouched and the result does not depend on earlier requests.
     """
     copy = TopoDS.Face(BRepBuilderAPI_Copy(face, False, False).Shape())
-    BRepMesh_IncrementalMesh(copy, diagonal * FALLBACK_DEFLECTION_RATIO, False, FALLBACK_ANGLE)
+    mesh_face(copy, diagonal * FALLBACK_DEFLECTION_RATIO, FALLBACK_ANGLE)
     tri = BRep_Tool.Triangulation_s(copy, TopLoc_Location())
     if tri is None or not tri.HasUVNodes():
         return []
