@@ -63,21 +63,19 @@ pub fn bounds(t: &[DVec2; 3]) -> (DVec2, DVec2) {
 /// tested every triangle to the left of each one: n^2 on a large face, 4 s of a 2,500-hole plate's
 /// pairing) and summed in the order of their lower x bound, so the sum is the same to the last bit.
 pub fn soup_overlap(a: &[[DVec2; 3]], b: &[[DVec2; 3]]) -> f64 {
+    let b_bounds: Vec<(DVec2, DVec2)> = b.iter().map(bounds).collect();
     let mut order: Vec<usize> = (0..b.len()).collect();
-    order.sort_by(|&x, &y| bounds(&b[x]).0.x.total_cmp(&bounds(&b[y]).0.x));
+    order.sort_by(|&x, &y| b_bounds[x].0.x.total_cmp(&b_bounds[y].0.x));
     let mut rank = vec![0; b.len()];
     for (r, &i) in order.iter().enumerate() {
         rank[i] = r;
     }
-    let boxes: Vec<GeomWithData<Rectangle<[f64; 2]>, usize>> = b
+    let boxes = b_bounds
         .iter()
         .enumerate()
-        .map(|(i, t)| {
-            let (lo, hi) = bounds(t);
-            GeomWithData::new(Rectangle::from_corners(lo.to_array(), hi.to_array()), i)
-        })
+        .map(|(i, (lo, hi))| GeomWithData::new(Rectangle::from_corners(lo.to_array(), hi.to_array()), i))
         .collect();
-    let tree = RTree::bulk_load(boxes);
+    let tree: RTree<GeomWithData<Rectangle<[f64; 2]>, usize>> = RTree::bulk_load(boxes);
     let mut total = 0.0;
     let mut near = Vec::new();
     for ta in a {

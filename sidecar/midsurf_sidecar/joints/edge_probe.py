@@ -66,26 +66,23 @@ class FaceSides:
 
     def __init__(self, face: TopoDS_Face) -> None:
         self.face = face
-        self._edges: dict[int, list[TopoDS_Edge]] = {}
-        explorer = TopExp_Explorer(face, TopAbs_EDGE)
-        while explorer.More():
-            current = explorer.Current()
-            self._edges.setdefault(hash(current), []).append(TopoDS.Edge(current))
-            explorer.Next()
-        forward = TopoDS.Face(face.Oriented(TopAbs_FORWARD))
-        outer = BRepTools.OuterWire_s(forward)
-        self._forward, self._outer = forward, outer
+        # Per shape hash, each edge as the face's boundary runs through it (wires and edges explored from the
+        # face compose its orientation, in the face's order) with the index of its wire.
+        self._edges: dict[int, list[tuple[TopoDS_Edge, int]]] = {}
+        # The wires as the forward face holds them, for the classifiers.
         self._wires: list[TopoDS_Wire] = []
-        self._wire_of: dict[int, int] = {}
-        wires = TopExp_Explorer(forward, TopAbs_WIRE)
+        wires = TopExp_Explorer(face, TopAbs_WIRE)
         while wires.More():
-            wire = TopoDS.Wire(wires.Current())
+            wire = wires.Current()
             edges = TopExp_Explorer(wire, TopAbs_EDGE)
             while edges.More():
-                self._wire_of.setdefault(hash(edges.Current()), len(self._wires))
+                edge = TopoDS.Edge(edges.Current())
+                self._edges.setdefault(hash(edge), []).append((edge, len(self._wires)))
                 edges.Next()
-            self._wires.append(wire)
+            self._wires.append(TopoDS.Wire(wire.Composed(face.Orientation())))
             wires.Next()
+        self._forward = TopoDS.Face(face.Oriented(TopAbs_FORWARD))
+        self._outer = BRepTools.OuterWire_s(self._forward)
         self._classifiers: dict[int, IntTools_FClass2d] = {}
         # Bounded by the face's (u, v) range, which takes a walk of every edge's pcurve to find.
         self.surface = BRepAdaptor_Surface(face, True)
@@ -95,8 +92,11 @@ class FaceSides:
     def oriented_edge(self, edge: TopoDS_Shape) -> TopoDS_Edge:
         """The edge as the face's boundary runs through it (orientation composed with the face's): the first
         use in the face's order, as a seam is used twice."""
+        return self._find(edge)[0]
+
+    def _find(self, edge: TopoDS_Shape) -> tuple[TopoDS_Edge, int]:
         for candidate in self._edges.get(hash(edge), []):
-            if candidate.IsSame(edge):
+            if candidate[0].IsSame(edge):
                 return candidate
         raise BadArgs("the edge is not an edge of the face")
 
@@ -104,7 +104,7 @@ class FaceSides:
         """IN, OUT or ON the face near `edge` at (u, v), by the face's outer wire and the edge's wire.
         IntTools_FClass2d tests polygons of the wires and falls back to the exact classifier within their sag
         of them, so it answers as BRepClass_FaceClassifier does away from the other wires."""
-        index = self._wire_of[hash(edge)]
+        index = self._find(edge)[1]
         if index not in self._classifiers:
             bounded = TopoDS.Face(self._forward.EmptyCopied())
             builder = BRep_Builder()
