@@ -406,6 +406,37 @@ def tray_two_levels() -> Fixture:
     return Fixture(single_solid(part), 80 * 60 * 20 - 76 * 56 * 18 + 38 * 56 * 1.5, 13)
 
 
+def rounded_section(length: float, width: float, radius: float, inset: float) -> float:
+    """Area of the rectangle length x width with rounded corners (radius), shrunk by `inset` all round."""
+    return (length - 2 * inset) * (width - 2 * inset) - (4 - math.pi) * (radius - inset) ** 2
+
+
+def tray_rib_grid() -> Fixture:
+    """Open tray 60 x 60 x 16 with rounded vertical corners (outer radius 8), walls and floor 2.5, thinned to
+    1.25 on the inside over the top 4 (a rim band for a lid), with a grid of ribs (1.5 thick, 8 high) on its
+    floor, three each way, ending 3 short of the walls: the class of a ribbed floor cut into cells smaller than
+    the band its mid-patch overshoots past the walls all round. The walls' patches, offset from their inner
+    skins (the outer ones span the rim band's step), reach the floor's patch by their joints; the floor's patch,
+    offset from its outer skin, runs out to the outer skins. Once the joints are grown, the walls cross it at
+    their mid-surfaces, leaving a band 1.25 wide round the tray, one piece past the rounded corners (about
+    280 mm2), and the ribs' lines, carried through to the walls, cut the rest into cells of at most 225 mm2. The
+    band is the overshoot and goes, though it is the floor's largest piece; the cells, closed in by crossing
+    lines and joined to each other only where a rib stops short, stay.
+    Faces: 93 (base, rim, 4 outside walls and 4 corners, 4 inside walls and 4 corners below the rim band and
+    again on it, the step between, the floor, and the ribs: their sides split at every crossing, their ends and
+    tops).
+    Volume: the rounded prism less the cavity, plus the ribs (three along x and three along y, 49 long, less
+    the nine 1.5 x 1.5 crossings counted twice) x 1.5 x 8.
+    """
+    cavity = drafted_rounded_prism(60, 60, 8, 2.5, 9.5, 2.5, 0) + drafted_rounded_prism(60, 60, 8, 12, 5, 1.25, 0)
+    part = drafted_rounded_prism(60, 60, 8, 0, 16, 0, 0) - cavity  # the cavity pokes out of the top
+    for c in (15, 30, 45):
+        part = part + box(c - 0.75, 5.5, 2.5, 1.5, 49, 8) + box(5.5, c - 0.75, 2.5, 49, 1.5, 8)
+    section = [rounded_section(60, 60, 8, inset) for inset in (0, 1.25, 2.5)]
+    rib_volume = (6 * 49 * 1.5 - 9 * 1.5 * 1.5) * 8
+    return Fixture(single_solid(part), section[0] * 16 - section[1] * 4 - section[2] * 9.5 + rib_volume, 93)
+
+
 def tapered_box(length: float, width: float, z0: float, z1: float, inset: float, slope: float) -> Solid:
     """A box whose sides lean inwards by `slope` (run per rise) from z0 to z1; at height z each side lies
     `inset + slope * z` inside the rectangle 0..length by 0..width."""
@@ -627,6 +658,7 @@ PARTS: list[Callable[[], Fixture]] = [
     cover_pin,
     plate_hairline_groove,
     tray_two_levels,
+    tray_rib_grid,
     box_drafted,
     box_drafted_rounded,
     tapered_plate,

@@ -12,7 +12,7 @@
 
 use crate::geom::inside::SolidMesh;
 use crate::model::shapes::Fused;
-use crate::trim::{connected_sets, Branch, TrimReason};
+use crate::trim::{connected_sets, largest_pieces, Branch, TrimReason};
 
 use super::PatchInfo;
 
@@ -30,7 +30,7 @@ pub(super) fn dangling(fused: &Fused, keep: &[bool], patches: &[PatchInfo], soli
     let mut peeled = Vec::new();
     // Round by round: a piece peeled may leave the next one (further out of its wall) hanging free.
     loop {
-        let largest = largest_piece_of_each_patch(fused, &kept, patches.len());
+        let largest = largest_pieces(fused, &kept);
         let mut peel: Vec<bool> = (0..fused.faces.len())
             .map(|f| {
                 kept[f]
@@ -88,20 +88,6 @@ pub(super) fn dangling(fused: &Fused, keep: &[bool], patches: &[PatchInfo], soli
             Branch { piece: f, patch: face.patch, area: face.area, width: 0.0, crossing, reason: TrimReason::Dangling }
         })
         .collect()
-}
-
-fn largest_piece_of_each_patch(fused: &Fused, keep: &[bool], patches: usize) -> Vec<Option<usize>> {
-    let mut largest: Vec<Option<usize>> = vec![None; patches];
-    for (f, face) in fused.faces.iter().enumerate() {
-        if !keep[f] {
-            continue;
-        }
-        let slot = &mut largest[face.patch];
-        if slot.is_none_or(|g| face.area > fused.faces[g].area) {
-            *slot = Some(f);
-        }
-    }
-    largest
 }
 
 /// Whether piece `f` is no wider (2 x area / perimeter, the width of a band) than its patch's joints reach: an

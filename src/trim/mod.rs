@@ -2,14 +2,15 @@
 //!
 //! Offsetting the larger face of each wall makes neighbouring patches run past each other: at an L corner
 //! each patch overshoots the other by half the other's thickness. A piece of a split patch is such a branch
-//! when it touches another patch (a crossing line), is not the largest piece of its patch, and every point
-//! of its boundary lies within 0.75 x the crossing patch's thickness of the crossing lines (the overshoot is
-//! half a thickness; the margin absorbs tilted walls). A piece joined to another piece of its own patch by an
-//! edge that no other patch shares (longer than the overshoot) is not hanging: a joint strip grown from the
-//! patch's edge stays. A hanging piece touching no other patch stays only when so joined to a piece that is
-//! not a branch: overshoot corners joined only to branches go with them.
+//! when it touches another patch (a crossing line), hangs (it or the pieces of its patch it is joined to have a
+//! free edge), is not the body of its patch (`heaviest_stretch_pieces`), and every point of its boundary lies within 0.75 x
+//! the crossing patch's thickness of the crossing lines (the overshoot is half a thickness; the margin absorbs
+//! tilted walls). A piece joined to another piece of its own patch by a boundary that no other patch shares
+//! (longer than the overshoot) is not hanging: a joint strip grown from the patch's edge stays. A hanging piece
+//! touching no other patch stays only when so joined to a piece that is not a branch: overshoot corners joined
+//! only to branches go with them.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use glam::DVec3;
 use serde::Serialize;
@@ -44,6 +45,10 @@ pub fn fuse_and_trim<K: Kernel>(
 
 /// Overshoot allowance over the crossing patch's thickness (nominal overshoot 0.5).
 const BRANCH_WIDTH: f64 = 0.75;
+
+/// A piece's width is measured at points of its boundary this share of the branch limit apart: the farthest
+/// point is then missed by at most an eighth of the limit.
+const WIDTH_STEP: f64 = 0.25;
 
 /// How far a branch may hang past a patch `thickness` thick lying `to_mid` off the middle of its wall: a patch
 /// on a skin is crossed by others up to a whole thickness before they reach the far skin.
@@ -90,19 +95,32 @@ fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
     p.distance(a + ab * t)
 }
 
+/// Points along a polyline no farther apart than `step` (its own points included).
+fn along(line: &[DVec3], step: f64) -> Vec<DVec3> {
+    let mut out: Vec<DVec3> = line.first().copied().into_iter().collect();
+    for w in line.windows(2) {
+        let n = if step > 0.0 { (w[0].distance(w[1]) / step).ceil().max(1.0) as usize } else { 1 };
+        out.extend((1..=n).map(|k| w[0].lerp(w[1], k as f64 / n as f64)));
+    }
+    out
+}
+
 fn distance_to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
     line.windows(2).map(|w| distance_to_segment(p, w[0], w[1])).fold(f64::INFINITY, f64::min)
 }
 
 /// The branches to drop; `limit[k]` is how far a branch may hang past patch k (see [`branch_limit`]).
 pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
-    let largest = largest_pieces(fused, &vec![true; fused.faces.len()]);
-    let mut candidates: Vec<Option<Branch>> = vec![None; fused.faces.len()];
+    let n = fused.faces.len();
     // Pieces of the same patch sharing an edge no other patch crosses.
-    let mut own_links: Vec<Vec<usize>> = vec![Vec::new(); fused.faces.len()];
+    let mut own_links: Vec<Vec<usize>> = vec![Vec::new(); n];
     // Hanging pieces that touch no other patch (an overshoot corner, the end of a strip): they anchor nothing
     // and stay only when joined to a piece that does.
-    let mut loose = vec![false; fused.faces.len()];
+    let mut loose = vec![false; n];
+    // Pieces hanging past a crossing by no more than an overshoot: (width, crossing patches).
+    let mut overshoot: Vec<Option<(f64, Vec<usize>)>> = vec![None; n];
+    // Pieces with a free edge.
+    let mut free = vec![false; n];
     for (i, face) in fused.faces.iter().enumerate() {
         let mut crossing: Vec<usize> = Vec::new();
         let mut lines: Vec<&[DVec3]> = Vec::new();
@@ -124,20 +142,30 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
         }
         crossing.sort_unstable();
         crossing.dedup();
+        free[i] = hanging;
         let across = crossing.iter().map(|&p| limit[p]).fold(0.0, f64::max);
-        for e in own {
-            let edge = &fused.edges[e];
-            if edge.length < across {
-                // Shorter than an overshoot: where the crossing line stops a little before the strip does, the
-                // stub between the two is part of the cut, not what joins the piece to its patch.
-                lines.push(&edge.points);
-            } else {
-                own_links[i].extend(edge.faces.iter().copied().filter(|&g| g != i));
+        // The boundary the piece shares with each other piece of its patch, summed over edges: a long split
+        // line is often cut into short edges by the lines crossing it.
+        let mut shared: BTreeMap<usize, f64> = BTreeMap::new();
+        for &e in &own {
+            for &g in fused.edges[e].faces.iter().filter(|&&g| g != i) {
+                *shared.entry(g).or_insert(0.0) += fused.edges[e].length;
             }
         }
-        if largest[face.patch] == Some(i) || (!hanging && own_links[i].is_empty()) {
-            // The main piece, or one closed in by crossing lines all round (a floor between walls): however
-            // narrow, a branch hangs past the crossing, by a free edge or with other overshoot pieces.
+        for e in own {
+            let edge = &fused.edges[e];
+            let others: Vec<usize> = edge.faces.iter().copied().filter(|&g| g != i).collect();
+            if others.iter().all(|g| shared[g] < across) {
+                // Less than an overshoot shared: where the crossing line stops a little before the strip does,
+                // the stub between the two is part of the cut, not what joins the piece to its patch.
+                lines.push(&edge.points);
+            } else {
+                own_links[i].extend(others);
+            }
+        }
+        if !hanging && own_links[i].is_empty() {
+            // Closed in by crossing lines all round (a floor between walls): however narrow, a branch hangs past
+            // the crossing, by a free edge or with other overshoot pieces.
             continue;
         }
         if crossing.is_empty() {
@@ -147,19 +175,52 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             loose[i] = hanging && 2.0 * face.area <= limit[face.patch] * perimeter;
             continue;
         }
+        // Along the boundary, not only at its vertices: a cell between crossing lines has every vertex on one,
+        // and its width lies between them.
+        let step = WIDTH_STEP * across;
         let width = face
             .edges
             .iter()
-            .flat_map(|&e| fused.edges[e].points.iter())
-            .map(|&p| lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min))
+            .flat_map(|&e| along(&fused.edges[e].points, step))
+            .map(|p| lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min))
             .fold(0.0, f64::max);
         if width <= across {
-            candidates[i] = Some(Branch::of(i, face, width, crossing, TrimReason::Overshoot));
+            overshoot[i] = Some((width, crossing));
         }
     }
+    // A branch hangs, by a free edge of its own or of the pieces it is joined to: a set of pieces closed in by
+    // crossing lines all round (cells of a floor between ribs, joined where a rib stops short of a wall) stays
+    // however narrow each is.
+    let mut parent: Vec<usize> = (0..n).collect();
+    for (i, links) in own_links.iter().enumerate() {
+        for &j in links {
+            let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    let mut set_hangs = vec![false; n];
+    for i in (0..n).filter(|&i| free[i]) {
+        set_hangs[find(&mut parent, i)] = true;
+    }
+    for i in 0..n {
+        if !set_hangs[find(&mut parent, i)] {
+            overshoot[i] = None;
+        }
+    }
+    // The body of each patch stays, however it hangs.
+    let body = heaviest_stretch_pieces(fused, &mut parent);
+    let mut candidates: Vec<Option<Branch>> = overshoot
+        .into_iter()
+        .enumerate()
+        .map(|(i, o)| {
+            let (width, crossing) = o.filter(|_| body[fused.faces[i].patch] != Some(i))?;
+            Some(Branch::of(i, &fused.faces[i], width, crossing, TrimReason::Overshoot))
+        })
+        .collect();
     // A narrow piece joined (through other narrow pieces) to a piece of its patch that is not narrow continues
     // the patch (a joint strip grown from its edge): only the rest hang past crossings.
-    let mut anchored: Vec<bool> = candidates.iter().zip(&loose).map(|(c, &l)| c.is_none() && !l).collect();
+    let mut anchored: Vec<bool> =
+        (0..n).map(|i| (candidates[i].is_none() && !loose[i]) || body[fused.faces[i].patch] == Some(i)).collect();
     let mut queue: Vec<usize> = (0..anchored.len()).filter(|&i| anchored[i]).collect();
     while let Some(i) = queue.pop() {
         for &j in &own_links[i] {
@@ -170,7 +231,7 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
         }
     }
     for (i, face) in fused.faces.iter().enumerate() {
-        if loose[i] && !anchored[i] {
+        if loose[i] && !anchored[i] && body[face.patch] != Some(i) {
             candidates[i] = Some(Branch::of(i, face, 0.0, Vec::new(), TrimReason::Overshoot));
         }
     }
@@ -207,8 +268,30 @@ pub fn outside_material(fused: &Fused, keep: &[bool], inside: impl Fn(&FusedFace
     out
 }
 
+/// Per patch (indexed by patch), the piece that stands for its body: the largest piece of its heaviest
+/// *stretch*, a set of its pieces joined to each other (the union-find forest `parent`), weighed by area (the
+/// first on a tie). The largest piece alone is not enough: a floor cut into cells by a grid of ribs can have
+/// cells smaller than the band its offset overshoots past the walls all round, and that band, held to the walls
+/// by crossing lines only, is the overshoot, not the body. With no pieces joined, the body is the largest piece.
+fn heaviest_stretch_pieces(fused: &Fused, parent: &mut [usize]) -> Vec<Option<usize>> {
+    let patches = fused.faces.iter().map(|f| f.patch + 1).max().unwrap_or(0);
+    let mut weight = vec![0.0; fused.faces.len()];
+    for (i, f) in fused.faces.iter().enumerate() {
+        weight[find(parent, i)] += f.area;
+    }
+    // Per patch: (weight of the stretch, area of the piece, piece), the heaviest stretch's largest piece.
+    let mut body: Vec<Option<(f64, f64, usize)>> = vec![None; patches];
+    for (i, f) in fused.faces.iter().enumerate() {
+        let w = weight[find(parent, i)];
+        if body[f.patch].is_none_or(|(bw, ba, _)| w > bw || (w == bw && f.area > ba)) {
+            body[f.patch] = Some((w, f.area, i));
+        }
+    }
+    body.into_iter().map(|b| b.map(|(_, _, i)| i)).collect()
+}
+
 /// Per patch (indexed by patch), its largest piece among those kept (`keep`), the first on a tie.
-fn largest_pieces(fused: &Fused, keep: &[bool]) -> Vec<Option<usize>> {
+pub fn largest_pieces(fused: &Fused, keep: &[bool]) -> Vec<Option<usize>> {
     let patches = fused.faces.iter().map(|f| f.patch + 1).max().unwrap_or(0);
     let mut largest: Vec<Option<(f64, usize)>> = vec![None; patches];
     for (i, f) in fused.faces.iter().enumerate().filter(|&(i, _)| keep[i]) {

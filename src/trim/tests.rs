@@ -220,3 +220,53 @@ fn merge_sets_keep_apart_pieces_that_also_share_a_t_joints_edge() {
     // Without the T, the two pieces merge.
     assert_eq!(merge_sets(&fused, &[true, true, false]), vec![vec![0, 1]]);
 }
+
+/// A ribbed floor's patch (0) at its edge, in plan: the band its offset overshoots past a wall (piece 0, between
+/// the wall's mid-surface at x = 1 and the floor's outer edge at x = 0, 40 long), and two cells (pieces 1 and 2,
+/// x 1..11) between that wall (patch 1), a rib (patch 2, x = 11) and a cross wall (patch 3, at y = 0 and y = 40),
+/// split at y = 20 where a rib's line, stopping short, was carried through. The band is larger than either cell.
+fn ribbed_floor_edge() -> Fused {
+    let v = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let edges = vec![
+        edge(vec![0, 1, 3], v(1.0, 0.0, 0.0), v(1.0, 20.0, 0.0)),
+        edge(vec![0, 2, 3], v(1.0, 20.0, 0.0), v(1.0, 40.0, 0.0)),
+        edge(vec![0], v(0.0, 0.0, 0.0), v(0.0, 40.0, 0.0)),
+        edge(vec![1, 4], v(11.0, 0.0, 0.0), v(11.0, 20.0, 0.0)),
+        edge(vec![2, 4], v(11.0, 20.0, 0.0), v(11.0, 40.0, 0.0)),
+        edge(vec![1, 2], v(1.0, 20.0, 0.0), v(11.0, 20.0, 0.0)),
+        edge(vec![1, 5], v(1.0, 0.0, 0.0), v(11.0, 0.0, 0.0)),
+        edge(vec![2, 5], v(1.0, 40.0, 0.0), v(11.0, 40.0, 0.0)),
+        edge(vec![3], v(1.0, 0.0, 30.0), v(1.0, 40.0, 30.0)),
+        edge(vec![4], v(11.0, 0.0, 8.0), v(11.0, 40.0, 8.0)),
+        edge(vec![5], v(0.0, 0.0, 30.0), v(40.0, 0.0, 30.0)),
+    ];
+    Fused {
+        handle: 1,
+        faces: vec![
+            face(0, 300.0, vec![0, 1, 2]),
+            face(0, 200.0, vec![0, 3, 5, 6]),
+            face(0, 200.0, vec![1, 4, 5, 7]),
+            face(1, 1200.0, vec![0, 1, 8]),
+            face(2, 320.0, vec![3, 4, 9]),
+            face(3, 1200.0, vec![6, 7, 10]),
+        ],
+        edges,
+    }
+}
+
+#[test]
+fn the_band_past_the_walls_goes_though_it_is_the_largest_piece() {
+    // The band hangs past the wall by 1 (within 0.75 x 2); the cells are closed in by crossing lines and each
+    // other, though every vertex of theirs lies on a crossing line.
+    let branches = find_branches(&ribbed_floor_edge(), &mid_limits(&[2.0; 4]));
+    assert_eq!(branches.iter().map(|b| b.piece).collect::<Vec<_>>(), vec![0]);
+    assert!((branches[0].width - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn a_piece_is_as_wide_as_the_middle_of_its_sides() {
+    // Sampled at the ends only, a segment between two crossing lines seems to touch them.
+    let points = along(&[DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0)], 1.0);
+    assert_eq!(points.len(), 11);
+    assert!(points.windows(2).all(|w| (w[0].distance(w[1]) - 1.0).abs() < 1e-12));
+}
