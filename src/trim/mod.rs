@@ -2,13 +2,13 @@
 //!
 //! Offsetting the larger face of each wall makes neighbouring patches run past each other: at an L corner
 //! each patch overshoots the other by half the other's thickness. A piece of a split patch is such a branch
-//! when it touches another patch (a crossing line), hangs (it or the pieces of its patch it is joined to have a
-//! free edge), is not the body of its patch (`heaviest_stretch_pieces`), and every point of its boundary lies within 0.75 x
-//! the crossing patch's thickness of the crossing lines (the overshoot is half a thickness; the margin absorbs
-//! tilted walls). A piece joined to another piece of its own patch by a boundary that no other patch shares
-//! (longer than the overshoot) is not hanging: a joint strip grown from the patch's edge stays. A hanging piece
-//! touching no other patch stays only when so joined to a piece that is not a branch: overshoot corners joined
-//! only to branches go with them.
+//! when it touches another patch (a crossing line), hangs (it or the pieces of its patch it is joined to have
+//! a free edge), is not the body of its patch (`heaviest_stretch_pieces`), and every point of its boundary
+//! lies within 0.75 x the crossing patch's thickness of the crossing lines (the overshoot is half a
+//! thickness; the margin absorbs tilted walls). A piece joined to another piece of its own patch by a boundary
+//! that no other patch shares (longer than the overshoot) is not hanging: a joint strip grown from the patch's
+//! edge stays. A hanging piece touching no other patch stays only when so joined to a piece that is not a
+//! branch: overshoot corners joined only to branches go with them.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -18,7 +18,7 @@ use serde::Serialize;
 use crate::kernel::{Kernel, SidecarError};
 use crate::model::shapes::{Fused, FusedFace, Handle};
 
-use union_find::find;
+use union_find::{find, union};
 
 mod union_find;
 
@@ -176,14 +176,15 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             continue;
         }
         // Along the boundary, not only at its vertices: a cell between crossing lines has every vertex on one,
-        // and its width lies between them.
+        // and its width lies between them. The first point farther than `across` settles it: no branch.
         let step = WIDTH_STEP * across;
-        let width = face
-            .edges
-            .iter()
-            .flat_map(|&e| along(&fused.edges[e].points, step))
-            .map(|p| lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min))
-            .fold(0.0, f64::max);
+        let mut width = 0.0;
+        for p in face.edges.iter().flat_map(|&e| along(&fused.edges[e].points, step)) {
+            width = lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min).max(width);
+            if width > across {
+                break;
+            }
+        }
         if width <= across {
             overshoot[i] = Some((width, crossing));
         }
@@ -194,8 +195,7 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
     let mut parent: Vec<usize> = (0..n).collect();
     for (i, links) in own_links.iter().enumerate() {
         for &j in links {
-            let (a, b) = (find(&mut parent, i), find(&mut parent, j));
-            parent[a.max(b)] = a.min(b);
+            union(&mut parent, i, j);
         }
     }
     let mut set_hangs = vec![false; n];
@@ -360,8 +360,7 @@ pub fn connected_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
     for edge in &fused.edges {
         let kept: Vec<usize> = edge.faces.iter().copied().filter(|&f| keep[f]).collect();
         for w in kept.windows(2) {
-            let (a, b) = (find(&mut parent, w[0]), find(&mut parent, w[1]));
-            parent[a.max(b)] = a.min(b);
+            union(&mut parent, w[0], w[1]);
         }
     }
     sets_of(&mut parent, keep)

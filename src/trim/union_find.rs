@@ -1,4 +1,4 @@
-//! The root finder of a union-find forest, for the grouping of kept pieces (patch trimming).
+//! A union-find forest, for the grouping of pieces (patch trimming).
 
 /// The root of `x` in the forest `parent`, halving the path on the way.
 pub fn find(parent: &mut [usize], mut x: usize) -> usize {
@@ -7,4 +7,11 @@ pub fn find(parent: &mut [usize], mut x: usize) -> usize {
         x = parent[x];
     }
     x
+}
+
+/// Joins the trees of `a` and `b` under the lower root, so that roots (and the sets read from them) do not
+/// depend on the order of the joins.
+pub fn union(parent: &mut [usize], a: usize, b: usize) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    parent[ra.max(rb)] = ra.min(rb);
 }
