@@ -2,15 +2,14 @@
 //!
 //! Offsetting the larger face of each wall makes neighbouring patches run past each other: at an L corner
 //! each patch overshoots the other by half the other's thickness. A piece of a split patch is such a branch
-//! when it touches another patch (a crossing line), hangs (it or the pieces of its patch it is joined to have
-//! a free edge), is not the body of its patch (`heaviest_stretch_pieces`), and every point of its boundary
-//! lies within 0.75 x the crossing patch's thickness of the crossing lines (the overshoot is half a
-//! thickness; the margin absorbs tilted walls). A piece joined to another piece of its own patch by a boundary
-//! that no other patch shares (longer than the overshoot) is not hanging: a joint strip grown from the patch's
-//! edge stays. A hanging piece touching no other patch stays only when so joined to a piece that is not a
+//! when it touches another patch (a crossing line), is not the body of its patch (`heaviest_stretch_pieces`),
+//! and every point of its boundary lies within 0.75 x the crossing patch's thickness of the crossing lines (the
+//! overshoot is half a thickness; the margin absorbs tilted walls). A piece joined to another piece of its own
+//! patch by an edge that no other patch shares (longer than the overshoot) is not hanging: a joint strip grown
+//! from the patch's edge stays. A hanging piece touching no other patch stays only when so joined to a piece that is not a
 //! branch: overshoot corners joined only to branches go with them.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 
 use glam::DVec3;
 use serde::Serialize;
@@ -45,10 +44,6 @@ pub fn fuse_and_trim<K: Kernel>(
 
 /// Overshoot allowance over the crossing patch's thickness (nominal overshoot 0.5).
 const BRANCH_WIDTH: f64 = 0.75;
-
-/// A piece's width is measured at points of its boundary this share of the branch limit apart: the farthest
-/// point is then missed by at most an eighth of the limit.
-const WIDTH_STEP: f64 = 0.25;
 
 /// How far a branch may hang past a patch `thickness` thick lying `to_mid` off the middle of its wall: a patch
 /// on a skin is crossed by others up to a whole thickness before they reach the far skin.
@@ -95,16 +90,6 @@ fn distance_to_segment(p: DVec3, a: DVec3, b: DVec3) -> f64 {
     p.distance(a + ab * t)
 }
 
-/// Points along a polyline no farther apart than `step` (its own points included).
-fn along(line: &[DVec3], step: f64) -> Vec<DVec3> {
-    let mut out: Vec<DVec3> = line.first().copied().into_iter().collect();
-    for w in line.windows(2) {
-        let n = if step > 0.0 { (w[0].distance(w[1]) / step).ceil().max(1.0) as usize } else { 1 };
-        out.extend((1..=n).map(|k| w[0].lerp(w[1], k as f64 / n as f64)));
-    }
-    out
-}
-
 fn distance_to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
     line.windows(2).map(|w| distance_to_segment(p, w[0], w[1])).fold(f64::INFINITY, f64::min)
 }
@@ -119,8 +104,6 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
     let mut loose = vec![false; n];
     // Pieces hanging past a crossing by no more than an overshoot: (width, crossing patches).
     let mut overshoot: Vec<Option<(f64, Vec<usize>)>> = vec![None; n];
-    // Pieces with a free edge.
-    let mut free = vec![false; n];
     for (i, face) in fused.faces.iter().enumerate() {
         let mut crossing: Vec<usize> = Vec::new();
         let mut lines: Vec<&[DVec3]> = Vec::new();
@@ -142,25 +125,15 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
         }
         crossing.sort_unstable();
         crossing.dedup();
-        free[i] = hanging;
         let across = crossing.iter().map(|&p| limit[p]).fold(0.0, f64::max);
-        // The boundary the piece shares with each other piece of its patch, summed over edges: a long split
-        // line is often cut into short edges by the lines crossing it.
-        let mut shared: BTreeMap<usize, f64> = BTreeMap::new();
-        for &e in &own {
-            for &g in fused.edges[e].faces.iter().filter(|&&g| g != i) {
-                *shared.entry(g).or_insert(0.0) += fused.edges[e].length;
-            }
-        }
         for e in own {
             let edge = &fused.edges[e];
-            let others: Vec<usize> = edge.faces.iter().copied().filter(|&g| g != i).collect();
-            if others.iter().all(|g| shared[g] < across) {
-                // Less than an overshoot shared: where the crossing line stops a little before the strip does,
-                // the stub between the two is part of the cut, not what joins the piece to its patch.
+            if edge.length < across {
+                // Shorter than an overshoot: where the crossing line stops a little before the strip does, the
+                // stub between the two is part of the cut, not what joins the piece to its patch.
                 lines.push(&edge.points);
             } else {
-                own_links[i].extend(others);
+                own_links[i].extend(edge.faces.iter().copied().filter(|&g| g != i));
             }
         }
         if !hanging && own_links[i].is_empty() {
@@ -175,12 +148,9 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             loose[i] = hanging && 2.0 * face.area <= limit[face.patch] * perimeter;
             continue;
         }
-        // Along the boundary, not only at its vertices: a cell between crossing lines has every vertex on one,
-        // and its width lies between them. The first point farther than `across` settles it: no branch.
-        let step = WIDTH_STEP * across;
         let mut width = 0.0;
-        for p in face.edges.iter().flat_map(|&e| along(&fused.edges[e].points, step)) {
-            width = lines.iter().map(|l| distance_to_polyline(p, l)).fold(f64::INFINITY, f64::min).max(width);
+        for p in face.edges.iter().flat_map(|&e| fused.edges[e].points.iter()) {
+            width = lines.iter().map(|l| distance_to_polyline(*p, l)).fold(f64::INFINITY, f64::min).max(width);
             if width > across {
                 break;
             }
@@ -189,22 +159,11 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             overshoot[i] = Some((width, crossing));
         }
     }
-    // A branch hangs, by a free edge of its own or of the pieces it is joined to: a set of pieces closed in by
-    // crossing lines all round (cells of a floor between ribs, joined where a rib stops short of a wall) stays
-    // however narrow each is.
+    // Pieces joined to each other, for the body.
     let mut parent: Vec<usize> = (0..n).collect();
     for (i, links) in own_links.iter().enumerate() {
         for &j in links {
             union(&mut parent, i, j);
-        }
-    }
-    let mut set_hangs = vec![false; n];
-    for i in (0..n).filter(|&i| free[i]) {
-        set_hangs[find(&mut parent, i)] = true;
-    }
-    for i in 0..n {
-        if !set_hangs[find(&mut parent, i)] {
-            overshoot[i] = None;
         }
     }
     // The body of each patch stays, however it hangs.
