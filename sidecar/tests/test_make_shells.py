@@ -267,3 +267,17 @@ def test_a_merge_set_becomes_one_face_and_keeps_its_edges_shared(client, tmp_pat
     back = read_step(path)
     assert sorted(round(a) for a in face_areas(back)) == [800, 1560]
     assert edge_components(back) == 1
+
+
+def test_a_merge_set_going_all_the_way_round_a_tube_stays_as_its_pieces(client):
+    # Two half tubes joined along both sides: merged, they would make a face closed on itself again, its seam
+    # used by that face alone (a free edge to a mesher and to a topology check).
+    halves = [BRepBuilderAPI_MakeFace(gp_Cylinder(gp_Ax3(), 10.0), a, a + math.pi, 0.0, 20.0).Face()
+              for a in (0.0, math.pi)]
+    f = fused(client, *halves)
+    assert len(f["faces"]) == 2
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[[0, 1]], merge=[[0, 1]])
+    assert ok["valid"] is True and sorted(ok["faces"]) == [0, 1]
+    shells = client.session.store.get(ok["handle"])
+    # Free edges only at the two rims (each a half circle per half); both sides along the axis are shared.
+    assert faces_per_edge(shells) == [1, 1, 1, 1, 2, 2]

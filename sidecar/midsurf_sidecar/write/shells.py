@@ -91,8 +91,9 @@ def _merge(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy
     unified at once, every edge but those inside a group kept (ShapeUpgrade_UnifySameDomain, faces only), so
     a face whose edge is rebuilt is rebuilt with it and the shells' sharing holds (merging a group on its own
     left its neighbours on edges the merged face no longer had: gaps once written). Groups holding a face split
-    at its seam are left out (merging would close the face on itself again); nothing changes when the
-    unification fails or gives faces that cannot be traced back."""
+    at its seam are left out (merging would close the face on itself again), and so are groups whose merged
+    face comes out closed on itself; nothing changes when the unification fails or gives faces that cannot be
+    traced back."""
     groups = [g for g in groups if all(len(pieces[i]) == 1 for i in g)]
     if not groups:
         return
@@ -135,6 +136,12 @@ def _merge(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy
             originals.Add(face)
     made = [f for faces in merged.values() for f in faces if not originals.Contains(f)]
     if not all(BRepCheck_Analyzer(f).IsValid() for f in made):
+        return
+    # Pieces that together go all the way round (a tube's pieces joined along both sides) merge into a face
+    # closed on itself again, its seam a free edge: those groups stay as pieces, the others merge.
+    closing = [g for g in groups if closing_isolines([f for f in merged[g[0]] if not originals.Contains(f)])]
+    if closing:
+        _merge(pieces, [g for g in groups if g not in closing], fuzzy)
         return
     pieces.update(merged)
 
