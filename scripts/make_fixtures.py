@@ -571,6 +571,31 @@ def channel_low_end() -> Fixture:
     return Fixture(single_solid(part.clean()), 100 * 60 * 2 + 2 * (100 * 2 * 38) + 56 * 2 * 18, 12)
 
 
+def channel_thick_flanges() -> Fixture:
+    """A channel 60 wide, 30 high and 80 long (along y): web 1.5 thick (z 0..1.5), its two bottom corners rounded
+    1.5 thick (outer R 5, inner R 3.5, both about x = 5 and x = 55 at z = 5), flanges 2.5 thick (x 0..2.5 and
+    57.5..60) whose inner skins run straight down into the inner rounds. The class of a wall meeting a thinner
+    rounded corner: the flange's mid-plane (x = 1.25) lies inside the corner's (R 4.25), crossing it at z = 3, and
+    the flange's patch, made from its inner skin, reaches below that (to z = 2.55). The web's support past the
+    web's patch is ahead of that edge, but the way there (x = 1.25 down to z = 0.75) leaves the material
+    through the outer round at z = 1.7: the two mid-surfaces meet outside the part, so that is no joint; the
+    corner's patch meets the flange's. Mid-surface: web z = 0.75 (x 5..55), corners R 4.25, flanges x = 1.25 and
+    58.75 from the corners up to z = 30.
+    Faces: 14 (outer: 2 flanges, 2 rounds, bottom; inner: 2 flanges, 2 rounds, web top; 2 flange tops; 2 ends).
+    Volume: 80 x the section: the outer 60 x 30 less two R 5 corners, less the cavity: 55 x 28.5 less the two
+    bits of each corner square [2.5, 5] x [1.5, 5] outside the inner round.
+    """
+    outer = box(0, 0, 0, 60, 80, 30)
+    outer = outer.fillet(5, edges_along_y(outer, 0, 0) + edges_along_y(outer, 60, 0))
+    inner = box(1.5, -1, 1.5, 57, 82, 40)
+    inner = inner.fillet(3.5, edges_along_y(inner, 1.5, 1.5) + edges_along_y(inner, 58.5, 1.5))
+    part = single_solid(outer - (inner & box(2.5, -2, 0, 55, 84, 50)))
+    r, u = 3.5, 2.5
+    in_round = u / 2 * math.sqrt(r * r - u * u) + r * r / 2 * math.asin(u / r)
+    section = 60 * 30 - 2 * (25 - math.pi * 25 / 4) - (55 * 28.5 - 2 * (u * r - in_round))
+    return Fixture(part, 80 * section, 14)
+
+
 def frustum(radius_bottom: float, radius_top: float, height: float) -> float:
     return math.pi * height / 3 * (radius_bottom**2 + radius_bottom * radius_top + radius_top**2)
 
@@ -669,6 +694,7 @@ PARTS: list[Callable[[], Fixture]] = [
     bspline_shell_rib,
     tube_oblique_end,
     channel_low_end,
+    channel_thick_flanges,
 ]
 
 

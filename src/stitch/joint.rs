@@ -102,8 +102,12 @@ pub fn decide(
     if !open {
         return Verdict::Rim;
     }
-    // Per sample, the meetings that count; the partner's wall begins half its thickness before its patch. The
-    // way through the material is tested once per meeting (each test casts rays), after the cheap tests.
+    // Per sample, the meetings that count. On the partner's face (a T) the way must stay in the material up to
+    // the partner's wall, which begins half its thickness before its patch. Past the partner's boundary (an L)
+    // it must stay in the material up to the meeting itself: two walls meeting at a corner share the corner's
+    // block, where their mid-surfaces cross; where they do not cross in the material (a corner rounded outside,
+    // its own curved wall between them), the meeting is no joint. The way through the material is tested once
+    // per meeting (each test casts rays), after the cheap tests.
     let usable: Vec<Vec<&Hit>> = probe
         .hits
         .iter()
@@ -111,10 +115,9 @@ pub fn decide(
         .map(|(k, hits)| {
             hits.iter()
                 .filter(|h| {
-                    patch_of[h.face] != patch
-                        && h.gap <= reach
-                        && h.distance <= reach
-                        && through(k, h.distance - 0.5 * thickness[patch_of[h.face]])
+                    let partner_t = thickness[patch_of[h.face]];
+                    let way = if h.gap > OVERSHOOT * partner_t { h.distance } else { h.distance - 0.5 * partner_t };
+                    patch_of[h.face] != patch && h.gap <= reach && h.distance <= reach && through(k, way)
                 })
                 .collect()
         })

@@ -57,6 +57,41 @@ fn meeting_the_support_past_the_boundary_is_an_l_joint() {
     assert_eq!(e.lengths, vec![0.75, 0.95]);
 }
 
+/// The section of fixture channel_thick_flanges: a flange's patch (patch 0, mid-plane x = 1.25) ends at z = 2.55,
+/// facing -z; the web's patch (patch 1, 1.5 thick, z = 0.75) ends at x = 5; the corner between them is rounded
+/// outside (R 5 about (5, 5)), so along x = 1.25 the material ends at z = 1.7.
+/// Thicknesses of the flange (patch 0) and the web (patch 1).
+const FLANGE_WEB: [f64; 3] = [2.5, 1.5, 1.5];
+
+fn flange_over_rounded_corner(hits: Vec<Hit>) -> (EdgeProbe, impl Fn(DVec3) -> bool + Copy) {
+    let mut p = probe(vec![hits; 3]);
+    p.points = (0..3).map(|k| DVec3::new(1.25, 10.0 * k as f64, 2.55)).collect();
+    p.outward = vec![-DVec3::Z; 3];
+    let section = |q: DVec3| {
+        let outer_round = q.x >= 5.0 || q.z >= 5.0 || (q.x - 5.0).powi(2) + (q.z - 5.0).powi(2) <= 25.0;
+        outer_round && q.x >= 0.0 && q.z >= 0.0
+    };
+    (p, section)
+}
+
+#[test]
+fn an_l_meeting_outside_the_material_is_no_joint_and_one_inside_is() {
+    // The web's support at z = 0.75 lies 1.8 ahead, 3.75 past the web patch's end: the way there leaves the part.
+    let (p, section) = flange_over_rounded_corner(vec![hit(2, 1.8, 3.75)]);
+    let through = |k, length| through_material(&p, k, length, 0.625, 0.0, section);
+    assert_eq!(decide(0, true, &p, &PATCH_OF, &FLANGE_WEB, 3.75, through), Verdict::Unresolved);
+    // With a sharp outer corner the same meeting lies in the corner's block: an L-joint.
+    let sharp = |q: DVec3| q.x >= 0.0 && q.z >= 0.0;
+    let through = |k, length| through_material(&p, k, length, 0.625, 0.0, sharp);
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &FLANGE_WEB, 3.75, through) else { panic!() };
+    assert_eq!((e.kind, e.partner), (JointKind::L, 1));
+    // A partner's face met within the material (a T) needs the way only up to that wall's skin.
+    let (p, section) = flange_over_rounded_corner(vec![hit(2, 1.2, 0.0)]);
+    let through = |k, length| through_material(&p, k, length, 0.625, 0.0, section);
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &FLANGE_WEB, 3.75, through) else { panic!() };
+    assert_eq!((e.kind, e.partner), (JointKind::T, 1));
+}
+
 #[test]
 fn own_patch_and_out_of_reach_meetings_do_not_count() {
     let p = probe(vec![vec![hit(1, 0.5, 0.0), hit(3, 3.5, 0.0)], vec![hit(3, 1.0, 4.0)]]);
