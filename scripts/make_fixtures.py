@@ -596,6 +596,21 @@ def channel_thick_flanges() -> Fixture:
     return Fixture(part, 80 * section, 14)
 
 
+def plate_land() -> Fixture:
+    """A plate 100 x 60 x 2 (z 1.5..3.5) with a land 4 wide and 1.5 deep under it along y (x 48..52, z 0..1.5):
+    the class of a wall crossed by something standing on it that gets no patch of its own (a thick land, a bead,
+    a block: here 3.5 thick, over t_max 3, and too narrow for its thickness to be a wall). The plate's bottom
+    skin is two faces, one each side; its top skin, one face, is the patch's reference, clipped to the bottom
+    faces' footprint, so the band over the land (4 wide, over the clip's narrow limit of t_max) lies over no
+    partner. At mid-wall the band lies in the material: the plate runs on through the land's root. Mid-surface:
+    z = 2.5 over the whole plate, one face.
+    Faces: 10 (top, 2 bottoms, 4 sides, the land's bottom and 2 sides).
+    Volume: 100 * 60 * 2 + 4 * 1.5 * 60.
+    """
+    part = box(0, 0, 1.5, 100, 60, 2) + box(48, 0, 0, 4, 60, 1.5)
+    return Fixture(single_solid(part.clean()), 100 * 60 * 2 + 4 * 1.5 * 60, 10)
+
+
 def frustum(radius_bottom: float, radius_top: float, height: float) -> float:
     return math.pi * height / 3 * (radius_bottom**2 + radius_bottom * radius_top + radius_top**2)
 
@@ -695,6 +710,7 @@ PARTS: list[Callable[[], Fixture]] = [
     tube_oblique_end,
     channel_low_end,
     channel_thick_flanges,
+    plate_land,
 ]
 
 

@@ -385,6 +385,28 @@ def test_clip_keeps_a_narrow_piece_between_covered_ones_and_drops_one_at_a_dead_
     assert sum(f["area"] for f in ok["faces"]) == pytest.approx(40.0 * 30.0)
 
 
+def test_clip_keeps_a_wide_band_between_covered_pieces_where_the_wall_runs_on_under_it(client):
+    # plate_land.step: the plate's top skin (z = 3.5) over its two bottom faces, a 4 wide land under it between
+    # them (x 48..52, z 0..1.5). The band over the land is wider than `narrow`, but at mid-wall (z = 2.5) it lies
+    # in the material all along: the plate runs on through the land's root.
+    handle = load_fixture(client, "plate_land.step")
+    g = graph(client, handle)
+    top = face_with(g, "plane", lambda f: f["normal"][2] > 0.99)
+    bottoms = [f["id"] for f in g["faces"] if f["normal"][2] < -0.99 and f["centroid"][2] > 1.0]
+    assert len(bottoms) == 2
+
+    def area(**wall):
+        clip = {"partners": [bottoms], "fuzzy": 1e-6, "narrow": 3.0, "narrow_end": 3.0, **wall}
+        ok = client.ok("make_patch", handle=handle, faces=[top["id"]], offset=-1.0, clip=clip)
+        return sum(f["area"] for f in ok["faces"])
+
+    assert area(thickness=2.0, to_mid=0.0, wall_max=3.0) == pytest.approx(100.0 * 60.0)
+    # Without the wall to probe, `narrow` decides.
+    assert area() == pytest.approx(96.0 * 60.0)
+    # Where mid-wall lies outside the material (here: told it is 2 above the patch, over the plate), the band goes.
+    assert area(thickness=2.0, to_mid=2.0, wall_max=3.0) == pytest.approx(96.0 * 60.0)
+
+
 def slot_end() -> "TopoDS_Shape":
     """The end of a slot (radius 1.5 about Z, y >= 0, 10 tall) in a 2 mm half ring, which from 120 degrees on
     runs into a block (x >= -1.75): the ring's outer face (radius 3.5) spans 120..180 degrees only."""

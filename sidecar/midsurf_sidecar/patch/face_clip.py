@@ -46,7 +46,9 @@ def clip_to_partners(
     """The pieces of `face` over the footprint of `partners`, plus the narrow uncovered pieces; [face] when
     nothing worth clipping. Pieces over one of `exclude` (the partners of the face's other thickness levels,
     whose own patches cover them) go whatever their width. An uncovered piece between two covered ones lies under something crossing the
-    wall (a wall, a lug) and stays up to `narrow` wide: the patch runs on across the junction. One at a dead
+    wall (a wall, a lug) and stays up to `narrow` wide, or wider where `wall` shows the wall running on under all
+    of it (WallProbe.runs_through: the root of a thick land or a block, which get no patch of their own): the
+    patch runs on across the junction. One at a dead
     end (an overshoot at a corner, a slot's end running into a block) stays up to `narrow_end` wide; past it
     the piece lies over other material, and the joints grow the clipped edge instead. A narrow piece at a dead
     end that reaches farther than TONGUE_REACH x `narrow_end` from the covered pieces is a tongue, not a corner's
@@ -102,8 +104,11 @@ def clip_to_partners(
             kept.append(i)
             continue
         between = neighbours is not None and sum(1 for j in neighbours[i] if covered[j]) >= 2
-        if elsewhere[i] or _width(piece, areas[i]) > (narrow if between else narrow_end):
+        if elsewhere[i]:
             continue
+        if _width(piece, areas[i]) > (narrow if between else narrow_end):
+            if not (between and wall is not None and wall.runs_through(piece, narrow)):
+                continue
         if not between and wall is not None and _reach(piece, cover) > TONGUE_REACH * narrow_end:
             if wall.tongue(piece, cover, narrow_end):
                 continue

@@ -47,6 +47,25 @@ class WallProbe:
                 on += area
         return far > 0.0 and on > 0.5 * far
 
+    def runs_through(self, piece: TopoDS_Face, step: float) -> bool:
+        """Whether the wall runs on under all of `piece`: every area sample of it (sides up to `step`), moved to
+        mid-wall, lies in the solid. An uncovered band between covered pieces of a patch that does (under a thick
+        land, a bead or a block standing on the wall, which get no patch of their own) is the wall going on
+        through their root; one over a slot or a groove deeper than half the wall is not."""
+        normals = OutwardNormals(piece)
+        classifier = self.solid.classifier
+        samples = 0
+        for _, u, v in area_samples(piece, diagonal(piece), step):
+            sample = normals.at(u, v)
+            if sample is None:
+                continue
+            point, normal = sample
+            classifier.Perform(gp_Pnt(*point).Translated(gp_Vec(*normal) * self.to_mid), CONFUSION)
+            if classifier.State() != TopAbs_IN:
+                return False
+            samples += 1
+        return samples > 0
+
     def on_other_wall(self, point, normal) -> bool:
         """Whether `point` (moved to mid-wall) lies outside the solid, or on another thin wall rather than in
         its own: the material across it along `normal` (the source face's outward one) is thicker than
