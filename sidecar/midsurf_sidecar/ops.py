@@ -282,14 +282,25 @@ def extend_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
             raise BadArgs(f"corner {j} must be {{points: [4 points], normal}}, got {entry!r}")
         points = [as_point(p, f"corner {j}'s points") for p in entry["points"]]
         normal = require_direction(entry, "normal")
+        axis = _corner_axis(entry, j)
         try:
-            made = edge_strip.corner(points, normal)
+            made = edge_strip.corner(points, normal, axis)
         except Exception as exc:  # OCCT raises its own Standard_Failure types
             corners_json.append({"area": None, "error": one_line(exc)})
             continue
         builder.Add(compound, made)
         corners_json.append({"area": surface_props(made).Mass(), "error": None})
     return {"handle": store.put(compound), "strips": made_json, "corners": corners_json}
+
+
+def _corner_axis(entry: dict[str, Any], j: int) -> tuple[tuple[float, float, float], tuple[float, float, float]] | None:
+    """A corner's optional `axis`: [a point on it, its direction] (normalised)."""
+    if "axis" not in entry:
+        return None
+    axis = entry["axis"]
+    if not isinstance(axis, list) or len(axis) != 2:
+        raise BadArgs(f"corner {j}'s axis must be [point, direction], got {axis!r}")
+    return as_point(axis[0], f"corner {j}'s axis point"), require_direction({"direction": axis[1]}, "direction")
 
 
 def gather(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:

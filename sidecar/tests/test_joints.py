@@ -212,3 +212,30 @@ def test_a_cone_foot_grows_along_its_own_cone():
     assert BRepAdaptor_Surface(grown).GetType() == GeomAbs_Cone
     # The frustum from r 6.1 at z = -1 to r 6 at z = 0: pi (r1 + r2) x slant length.
     assert surface_props(grown).Mass() == pytest.approx(math.pi * (6.1 + 6.0) * slant / 10.0, rel=1e-9)
+
+
+def test_a_step_bridge_between_coaxial_arcs_is_a_band_of_a_cone_sharing_its_arcs():
+    # A rim band's mid-surface (radius 10.76 from z = 35.64 up) over a rounded corner's wall (radius 10.39 up to
+    # z = 35.64): the ramp from the band's edge down to an arc 0.635 inside the wall's patch, a quarter turn.
+    import math
+
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.GeomAbs import GeomAbs_Circle
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopoDS import TopoDS
+
+    from midsurf_sidecar.geom.topology import subshapes, surface_props
+    from midsurf_sidecar.joints.edge_strip import corner
+
+    def at(r, angle, z):
+        return (r * math.cos(angle), r * math.sin(angle), z)
+
+    quad = [at(10.76, 0.0, 35.64), at(10.39, 0.0, 35.005), at(10.39, math.pi / 2, 35.005), at(10.76, math.pi / 2, 35.64)]
+    band = corner(quad, (1.0, 1.0, 0.0), ((0.0, 0.0, 0.0), (0.0, 0.0, 1.0)))
+    assert BRepCheck_Analyzer(band).IsValid()
+    slant = math.hypot(10.76 - 10.39, 0.635)
+    assert surface_props(band).Mass() == pytest.approx(math.pi / 4 * (10.76 + 10.39) * slant, rel=1e-6)
+    curves = [BRepAdaptor_Curve(TopoDS.Edge(e)) for e in subshapes(band, TopAbs_EDGE)]
+    radii = sorted(round(c.Circle().Radius(), 9) for c in curves if c.GetType() == GeomAbs_Circle)
+    assert radii == [10.39, 10.76]

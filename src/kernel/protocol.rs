@@ -72,11 +72,15 @@ pub struct StripRequest {
     pub onto_face: bool,
 }
 
-/// A quad closing the notch between two strips at a corner of a patch, oriented along the patch's normal.
+/// A quad closing the notch between two strips at a corner of a patch, oriented along the patch's normal. With
+/// `axis` (a point on it and its direction) the quad is a band between two coaxial arcs instead: from points[0]
+/// to points[3] and from points[1] to points[2], each turning counter-clockwise about the direction.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CornerRequest {
     pub points: [glam::DVec3; 4],
     pub normal: glam::DVec3,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub axis: Option<[glam::DVec3; 2]>,
 }
 
 /// Faces (indices of MapShapes(FACE)) of the shape behind `handle`.

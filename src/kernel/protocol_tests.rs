@@ -104,12 +104,20 @@ fn requests_encode_as_exact_json() {
             Request::ExtendEdges {
                 handle: 9,
                 strips: vec![StripRequest { edge: 4, face: 1, lengths: vec![1.0, 1.5], onto_face: true }],
-                corners: vec![CornerRequest {
-                    points: [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::ONE, glam::DVec3::Y],
-                    normal: glam::DVec3::Z,
-                }],
+                corners: vec![
+                    CornerRequest {
+                        points: [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::ONE, glam::DVec3::Y],
+                        normal: glam::DVec3::Z,
+                        axis: None,
+                    },
+                    CornerRequest {
+                        points: [glam::DVec3::X, glam::DVec3::X, glam::DVec3::Y, glam::DVec3::Y],
+                        normal: glam::DVec3::X,
+                        axis: Some([glam::DVec3::ZERO, glam::DVec3::Z]),
+                    },
+                ],
             },
-            r#"{"id":0,"op":"extend_edges","args":{"handle":9,"strips":[{"edge":4,"face":1,"lengths":[1.0,1.5],"onto_face":true}],"corners":[{"points":[[0.0,0.0,0.0],[1.0,0.0,0.0],[1.0,1.0,1.0],[0.0,1.0,0.0]],"normal":[0.0,0.0,1.0]}]}}"#,
+            r#"{"id":0,"op":"extend_edges","args":{"handle":9,"strips":[{"edge":4,"face":1,"lengths":[1.0,1.5],"onto_face":true}],"corners":[{"points":[[0.0,0.0,0.0],[1.0,0.0,0.0],[1.0,1.0,1.0],[0.0,1.0,0.0]],"normal":[0.0,0.0,1.0]},{"points":[[1.0,0.0,0.0],[1.0,0.0,0.0],[0.0,1.0,0.0],[0.0,1.0,0.0]],"normal":[1.0,0.0,0.0],"axis":[[0.0,0.0,0.0],[0.0,0.0,1.0]]}]}}"#,
         ),
         (
             Request::Gather { parts: vec![GatherPart { handle: 9, faces: vec![0, 2] }], unify: Some(0.001) },

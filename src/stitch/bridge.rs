@@ -61,30 +61,98 @@ pub struct StepBridge {
     pub quad: [DVec3; 4],
     /// The side the quad faces: a ramp its patch's, an upright or flat quad its owner's outward direction.
     pub normal: DVec3,
+    /// For two coaxial arcs, the axis (a point on it, its direction): the quad's sides are arcs about it, each
+    /// turning counter-clockwise about the direction from quad[0] to quad[3] and from quad[1] to quad[2].
+    pub axis: Option<[DVec3; 2]>,
 }
 
-/// Bridges across thickness steps and in-plane gaps (the in-plane joint): two straight free edges of
-/// different, parallel patches that may bridge (`bridgeable`), running side by side and facing each other
-/// (outward directions opposite), whose levels differ by at most the larger thickness and whose in-plane gap
-/// is no wider than it. The quad between the edges over the stretch they share fills an in-plane gap. A step
-/// steeper than 45 degrees and higher than `STEP_LEVEL_SHARE` of the thinner wall is laid down into a ramp from
-/// the thinner patch's edge to a line `RAMP_RUN` x its thickness inside the thicker patch (whose strip past that
-/// line trimming drops), when that edge spans the thicker one: a face standing across the wall would give a
-/// crash mesh elements as short as the step, and has no wall thickness of its own (the judge measures it along
-/// the wall). Each stretch of an edge is bridged once, nearest pairs first, sorted by (owner, other).
+/// What an edge runs along, for the step search: a straight line or an arc of a circle.
+#[derive(Debug, Clone, Copy)]
+enum Course {
+    /// From `start` along the unit `direction`, `length` long.
+    Line { start: DVec3, direction: DVec3, length: f64 },
+    /// About `axis` (unit) through `center`, of `radius`, from the unit radial direction `from`, turning
+    /// counter-clockwise about the axis by `sweep` (0..2 pi).
+    Arc { center: DVec3, axis: DVec3, radius: f64, from: DVec3, sweep: f64 },
+}
+
+impl Course {
+    /// Where `p` lies along the course, as a length from its start (an arc's by its angle times its radius).
+    fn position(&self, p: DVec3) -> f64 {
+        match *self {
+            Course::Line { start, direction, .. } => (p - start).dot(direction),
+            Course::Arc { center, axis, radius, from, .. } => angle_about(p - center, axis, from) * radius,
+        }
+    }
+}
+
+/// The angle of `v` about unit `axis` from unit `from` (square to it), counter-clockwise, in -pi/2..3 pi/2: a
+/// point a little before an arc's start reads as a small negative angle, not as nearly a whole turn.
+fn angle_about(v: DVec3, axis: DVec3, from: DVec3) -> f64 {
+    let angle = v.dot(axis.cross(from)).atan2(v.dot(from));
+    if angle < -std::f64::consts::FRAC_PI_2 {
+        angle + std::f64::consts::TAU
+    } else {
+        angle
+    }
+}
+
+/// The course of edge samples `points`: a line when they lie within STRAIGHT_SHARE of their chord (with a floor
+/// for a zero chord) from it, else an arc when they lie within ARC_SHARE of its radius of the circle through the
+/// first, middle and last, in its plane; None otherwise.
+fn course(points: &[DVec3]) -> Option<Course> {
+    let (a, b) = (*points.first()?, *points.last()?);
+    let length = a.distance(b);
+    let u = (b - a).normalize_or_zero();
+    let straight =
+        points.iter().all(|p| (*p - a).reject_from_normalized(u).length() <= STRAIGHT_SHARE * length.max(STRAIGHT_FLOOR));
+    if straight {
+        return (length > 0.0).then_some(Course::Line { start: a, direction: u, length });
+    }
+    let m = points[points.len() / 2];
+    let (v, w) = (m - a, b - a);
+    let normal = v.cross(w);
+    if normal.length_squared() == 0.0 {
+        return None;
+    }
+    // The circumcentre of a, m, b.
+    let center = a + (v.length_squared() * w - w.length_squared() * v).cross(normal) / (2.0 * normal.length_squared());
+    let axis = normal.normalize();
+    let radius = a.distance(center);
+    let on_circle = |p: &DVec3| {
+        let r = *p - center;
+        (r.reject_from_normalized(axis).length() - radius).abs() <= ARC_SHARE * radius
+            && r.dot(axis).abs() <= ARC_SHARE * radius
+    };
+    if !points.iter().all(on_circle) {
+        return None;
+    }
+    let from = (a - center) / radius;
+    let sweep = angle_about(b - center, axis, from).rem_euclid(std::f64::consts::TAU);
+    Some(Course::Arc { center, axis, radius, from, sweep })
+}
+
+/// Edge samples lie on a circle when within this share of its radius from it (an edge of a cylinder or cone
+/// patch is an exact arc; a spline one is not bridged).
+const ARC_SHARE: f64 = 1e-3;
+
+/// Two arcs are coaxial when the centre of one lies within this share of the larger radius from the other's axis.
+const COAXIAL_SHARE: f64 = 1e-3;
+
+/// Bridges across thickness steps and in-plane gaps (the in-plane joint): two straight free edges, or two arcs
+/// about one axis, of different, parallel patches that may bridge (`bridgeable`), running side by side and
+/// facing each other (outward directions opposite), whose levels differ by at most the larger thickness and whose
+/// in-plane gap is no wider than it. The quad between the edges over the stretch they share fills an in-plane
+/// gap. A step steeper than 45 degrees and higher than `STEP_LEVEL_SHARE` of the thinner wall is laid down into
+/// a ramp from the thinner patch's edge to a line `RAMP_RUN` x its thickness inside the thicker patch (whose
+/// strip past that line trimming drops), when that edge spans the thicker one: a face standing across the wall
+/// would give a crash mesh elements as short as the step, and has no wall thickness of its own (the judge
+/// measures it along the wall). Between arcs (a thinner rim band above a moulded housing's wall, round its
+/// rounded corners) the ramp is a band of a cone. Each stretch of an edge is bridged once, nearest pairs first,
+/// sorted by (owner, other).
 pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     let parallel = STEP_PARALLEL_DEG.to_radians().cos();
-    let line = |e: &LooseEdge| -> Option<(DVec3, DVec3, f64)> {
-        let (a, b) = (*e.points.first()?, *e.points.last()?);
-        let length = a.distance(b);
-        let u = (b - a).normalize_or_zero();
-        let straight = e
-            .points
-            .iter()
-            .all(|p| (*p - a).reject_from_normalized(u).length() <= STRAIGHT_SHARE * length.max(STRAIGHT_FLOOR));
-        (length > 0.0 && straight).then_some((a, u, length))
-    };
-    let lines: Vec<Option<(DVec3, DVec3, f64)>> = edges.iter().map(line).collect();
+    let courses: Vec<Option<Course>> = edges.iter().map(|e| course(&e.points)).collect();
     let mut candidates: Vec<(f64, StepBridge)> = Vec::new();
     for i in 0..edges.len() {
         for j in i + 1..edges.len() {
@@ -98,57 +166,28 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
             }
             // Measured from the thinner edge (the first on a tie), which carries a ramp.
             let (thin, thick) = if ej.thickness < ei.thickness { (j, i) } else { (i, j) };
-            let (Some((a, u, la)), Some((b, v, lb))) = (lines[thin], lines[thick]) else { continue };
-            let (et, ek) = (&edges[thin], &edges[thick]);
-            let reach = et.thickness.max(ek.thickness);
-            if u.dot(v).abs() < parallel {
-                continue;
-            }
-            // The thick edge's line relative to the thin one's: its offset (level and in-plane gap) and where it
-            // starts and ends on u.
-            let offset = (b - a).reject_from_normalized(u);
-            let gap = offset.length();
-            if !bridgeable(et, ek, gap) {
-                continue;
-            }
-            let level = offset.dot(et.normal).abs();
-            if level > reach || offset.dot(et.outward).abs() > reach {
-                continue;
-            }
-            let (b0, b1) = ((b - a).dot(u), (b - a).dot(u) + lb * u.dot(v).signum());
-            let (s0, s1) = (b0.min(b1).max(0.0), b0.max(b1).min(la));
-            if s1 - s0 <= SHARED_STRETCH_SHARE * la {
-                continue;
-            }
-            // A ramp only where the thin edge spans the whole thick edge, over at least the larger thickness: the
-            // thick patch is cut along a line through it, and a shorter ramp would cut away the rest of that
-            // patch's edge, a short one (the corner of a notch) pieces beside the notch, and what joins there.
-            let spans = s1 - s0 >= STEP_SPAN_SHARE * lb && s1 - s0 >= reach;
-            // Only a bridge steeper than 45 degrees needs laying down; a flatter one already spans the gap.
-            let ramp = spans && level > STEP_LEVEL_SHARE * et.thickness && level > offset.dot(et.outward);
-            let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
-            let far = offset - ek.outward * run;
-            let on_a = |s: f64| a + u * s;
-            let quad = [on_a(s0), on_a(s0) + far, on_a(s1) + far, on_a(s1)];
-            let bridge = if ramp || thin == i {
-                StepBridge { owner: thin, other: thick, quad, normal: if ramp { et.normal } else { et.outward } }
-            } else {
-                // A flat or upright bridge joins the first edge's patch: the same quad seen from the other side.
-                StepBridge { owner: thick, other: thin, quad: [quad[1], quad[0], quad[3], quad[2]], normal: ek.outward }
+            let found = match (courses[thin], courses[thick]) {
+                (Some(a @ Course::Line { .. }), Some(b @ Course::Line { .. })) => {
+                    line_bridge(edges, (thin, a), (thick, b), i, parallel)
+                }
+                (Some(a @ Course::Arc { .. }), Some(b @ Course::Arc { .. })) => {
+                    arc_bridge(edges, (thin, a), (thick, b), i, parallel)
+                }
+                _ => None,
             };
-            candidates.push((gap, bridge));
+            candidates.extend(found);
         }
     }
     let key = |b: &StepBridge| (b.owner.min(b.other), b.owner.max(b.other));
     candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then(key(&x.1).cmp(&key(&y.1))));
-    // Per edge, the stretches (along its own line) already bridged: a long edge facing several shorter ones
+    // Per edge, the stretches (along its own course) already bridged: a long edge facing several shorter ones
     // (the levels of a step split by a third) is bridged once per stretch.
     let mut used: Vec<Vec<(f64, f64)>> = vec![Vec::new(); edges.len()];
     let mut out = Vec::new();
     for (_, bridge) in candidates {
         let stretch = |k: usize, p: DVec3, q: DVec3| {
-            let (a, u, _) = lines[k].expect("bridged edges are straight");
-            let (s, t) = ((p - a).dot(u), (q - a).dot(u));
+            let c = courses[k].expect("bridged edges are lines or arcs");
+            let (s, t) = (c.position(p), c.position(q));
             (s.min(t), s.max(t))
         };
         let owner = stretch(bridge.owner, bridge.quad[0], bridge.quad[3]);
@@ -165,6 +204,132 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     }
     out.sort_by_key(|b| (b.owner, b.other));
     out
+}
+
+/// The bridge between straight edges `thin` and `thick` (indices and courses), with the gap between their lines;
+/// `first` is the pair's first edge, which owns a flat or upright bridge.
+fn line_bridge(
+    edges: &[LooseEdge],
+    (thin, a_course): (usize, Course),
+    (thick, b_course): (usize, Course),
+    first: usize,
+    parallel: f64,
+) -> Option<(f64, StepBridge)> {
+    let Course::Line { start: a, direction: u, length: la } = a_course else { return None };
+    let Course::Line { start: b, direction: v, length: lb } = b_course else { return None };
+    let (et, ek) = (&edges[thin], &edges[thick]);
+    let reach = et.thickness.max(ek.thickness);
+    if u.dot(v).abs() < parallel {
+        return None;
+    }
+    // The thick edge's line relative to the thin one's: its offset (level and in-plane gap) and where it starts
+    // and ends on u.
+    let offset = (b - a).reject_from_normalized(u);
+    let gap = offset.length();
+    if !bridgeable(et, ek, gap) {
+        return None;
+    }
+    let level = offset.dot(et.normal).abs();
+    if level > reach || offset.dot(et.outward).abs() > reach {
+        return None;
+    }
+    let (b0, b1) = ((b - a).dot(u), (b - a).dot(u) + lb * u.dot(v).signum());
+    let (s0, s1) = (b0.min(b1).max(0.0), b0.max(b1).min(la));
+    if s1 - s0 <= SHARED_STRETCH_SHARE * la {
+        return None;
+    }
+    // A ramp only where the thin edge spans the whole thick edge, over at least the larger thickness: the thick
+    // patch is cut along a line through it, and a shorter ramp would cut away the rest of that patch's edge, a
+    // short one (the corner of a notch) pieces beside the notch, and what joins there.
+    let spans = s1 - s0 >= STEP_SPAN_SHARE * lb && s1 - s0 >= reach;
+    // Only a bridge steeper than 45 degrees needs laying down; a flatter one already spans the gap.
+    let ramp = spans && level > STEP_LEVEL_SHARE * et.thickness && level > offset.dot(et.outward);
+    let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
+    let far = offset - ek.outward * run;
+    let on_a = |s: f64| a + u * s;
+    let quad = [on_a(s0), on_a(s0) + far, on_a(s1) + far, on_a(s1)];
+    Some((gap, owned(edges, thin, thick, first, ramp, quad, None)))
+}
+
+/// The bridge between arcs `thin` and `thick` (indices and courses) about one axis, with the gap between them
+/// in the middle of the stretch they share; `first` is the pair's first edge, which owns a flat or upright
+/// bridge. The same rules as `line_bridge`, measured in the plane through the axis at that middle, where the two
+/// arcs are two points: their offset splits into the level (along the thin patch's normal) and the in-plane gap.
+fn arc_bridge(
+    edges: &[LooseEdge],
+    (thin, a_course): (usize, Course),
+    (thick, b_course): (usize, Course),
+    first: usize,
+    parallel: f64,
+) -> Option<(f64, StepBridge)> {
+    let Course::Arc { center: ca, axis, radius: ra, from, sweep: sa } = a_course else { return None };
+    let Course::Arc { center: cb, axis: axis_b, radius: rb, sweep: sb, .. } = b_course else { return None };
+    let (et, ek) = (&edges[thin], &edges[thick]);
+    let reach = et.thickness.max(ek.thickness);
+    if axis.dot(axis_b).abs() < parallel || (cb - ca).reject_from_normalized(axis).length() > COAXIAL_SHARE * ra.max(rb)
+    {
+        return None;
+    }
+    // The thick arc's ends as angles about the thin one's axis, from its start.
+    let (first_b, last_b) = (*ek.points.first()?, *ek.points.last()?);
+    let (b0, b1) = (angle_about(first_b - ca, axis, from), angle_about(last_b - ca, axis, from));
+    let (lo, hi) = (b0.min(b1), b0.max(b1));
+    // An arc read across the thin one's start the long way round is no neighbour of it.
+    if hi - lo > sb + ARC_SHARE {
+        return None;
+    }
+    let (s0, s1) = (lo.max(0.0), hi.min(sa));
+    if (s1 - s0) <= SHARED_STRETCH_SHARE * sa {
+        return None;
+    }
+    // Directions at angle s: radial, and the thin and thick edges' normals and outward ones turned there from
+    // their middle samples (each arc's normal and outward turn with it about the axis).
+    let radial = |s: f64| from * s.cos() + axis.cross(from) * s.sin();
+    let turned = |vector: DVec3, at: DVec3, s: f64| {
+        let angle = angle_about(at - ca, axis, from);
+        glam::DQuat::from_axis_angle(axis, s - angle) * vector
+    };
+    let height_b = (cb - ca).dot(axis);
+    let on_a = |s: f64| ca + radial(s) * ra;
+    let on_b = |s: f64| ca + axis * height_b + radial(s) * rb;
+    let middle = 0.5 * (s0 + s1);
+    let (mid_a, mid_b) = (et.points[et.points.len() / 2], ek.points[ek.points.len() / 2]);
+    let offset = on_b(middle) - on_a(middle);
+    let gap = offset.length();
+    if !bridgeable(et, ek, gap) {
+        return None;
+    }
+    let (normal, outward) = (turned(et.normal, mid_a, middle), turned(et.outward, mid_a, middle));
+    let level = offset.dot(normal).abs();
+    if level > reach || offset.dot(outward).abs() > reach {
+        return None;
+    }
+    let spans = s1 - s0 >= STEP_SPAN_SHARE * sb && (s1 - s0) * ra.min(rb) >= reach;
+    let ramp = spans && level > STEP_LEVEL_SHARE * et.thickness && level > offset.dot(outward);
+    let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
+    let far = |s: f64| on_b(s) - turned(ek.outward, mid_b, s) * run;
+    let quad = [on_a(s0), far(s0), far(s1), on_a(s1)];
+    Some((gap, owned(edges, thin, thick, first, ramp, quad, Some([ca, axis]))))
+}
+
+/// The bridge `quad` between `thin` and `thick` given to its owner: the thinner edge for a ramp, else the pair's
+/// `first` edge (the same quad seen from the other side when that is the thick one).
+fn owned(
+    edges: &[LooseEdge],
+    thin: usize,
+    thick: usize,
+    first: usize,
+    ramp: bool,
+    quad: [DVec3; 4],
+    axis: Option<[DVec3; 2]>,
+) -> StepBridge {
+    let (et, ek) = (&edges[thin], &edges[thick]);
+    if ramp || thin == first {
+        StepBridge { owner: thin, other: thick, quad, normal: if ramp { et.normal } else { et.outward }, axis }
+    } else {
+        // A flat or upright bridge joins the first edge's patch: the same quad seen from the other side.
+        StepBridge { owner: thick, other: thin, quad: [quad[1], quad[0], quad[3], quad[2]], normal: ek.outward, axis }
+    }
 }
 
 /// Two loose edges (open, no partner) bridge anything within reach. Otherwise the bridge is a thickness step:

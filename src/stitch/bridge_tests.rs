@@ -90,3 +90,51 @@ fn no_bridge_between_edges_facing_the_same_way_too_far_or_of_one_patch() {
     let one = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(0, 2.0, 50.0, 1.5, (0.0, 60.0), -DVec3::X)];
     assert!(step_bridges(&one).is_empty());
 }
+
+/// A quarter arc about the z axis from angle a0 to a1 (radians), of radius r at height z, sampled as the probes
+/// sample an edge (5 points, ends included), with the patch normal radial (outward from the axis) and the
+/// given outward direction.
+fn arc(patch: usize, thickness: f64, r: f64, z: f64, (a0, a1): (f64, f64), outward: DVec3) -> LooseEdge {
+    let at = |k: usize| a0 + (a1 - a0) * k as f64 / 4.0;
+    let points = (0..5).map(|k| DVec3::new(r * at(k).cos(), r * at(k).sin(), z)).collect();
+    let mid = at(2);
+    LooseEdge {
+        patch,
+        wall: (1, patch),
+        thickness,
+        nearest: f64::INFINITY,
+        open: true,
+        points,
+        normal: DVec3::new(mid.cos(), mid.sin(), 0.0),
+        outward,
+    }
+}
+
+#[test]
+fn a_rim_band_over_a_rounded_corner_meets_the_wall_below_through_a_conical_ramp() {
+    // A housing's rounded corner (axis z): the wall's mid-surface (t = 2) at radius 10.39 up to z = 35.64, the
+    // thinner rim band's (t = 1.27) at radius 10.76 from there up: the band's patch lies 0.37 further out.
+    use std::f64::consts::FRAC_PI_2;
+    let edges = [
+        arc(0, 2.0, 10.39, 35.64, (0.0, FRAC_PI_2), DVec3::Z),
+        arc(1, 1.27, 10.76, 35.64, (FRAC_PI_2, 0.0), -DVec3::Z),
+    ];
+    let bridges = step_bridges(&edges);
+    assert_eq!(bridges.len(), 1, "{bridges:?}");
+    let StepBridge { owner, other, quad, axis, .. } = &bridges[0];
+    assert_eq!((*owner, *other), (1, 0), "the thinner patch owns the ramp");
+    let [origin, direction] = axis.expect("a band between arcs has their axis");
+    assert!(origin.truncate().length() < 1e-9 && (direction.z.abs() - 1.0).abs() < 1e-12, "{axis:?}");
+    // From the band's edge down to an arc RAMP_RUN x 1.27 = 0.635 inside the wall's patch, over the quarter.
+    let radius = |p: DVec3| p.truncate().length();
+    for (q, (r, z)) in quad.iter().zip([(10.76, 35.64), (10.39, 35.005), (10.39, 35.005), (10.76, 35.64)]) {
+        assert!((radius(*q) - r).abs() < 1e-9 && (q.z - z).abs() < 1e-9, "{quad:?}");
+    }
+    // Counter-clockwise about the axis from quad[0] to quad[3]: a quarter turn.
+    let turn = |p: DVec3, q: DVec3| direction.dot(p.cross(q)).atan2(p.truncate().dot(q.truncate()));
+    assert!((turn(quad[0], quad[3]) - FRAC_PI_2).abs() < 1e-9, "{quad:?}");
+    // Arcs about different axes are no step.
+    let mut moved = edges.clone();
+    moved[1].points.iter_mut().for_each(|p| p.x += 0.5);
+    assert!(step_bridges(&moved).is_empty());
+}

@@ -231,11 +231,11 @@ fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) 
         .collect();
     let mut bridged = vec![false; open.len()];
     let mut out = Vec::new();
-    for bridge::StepBridge { owner, other, quad, normal } in bridge::step_bridges(&edges) {
+    for bridge::StepBridge { owner, other, quad, normal, axis } in bridge::step_bridges(&edges) {
         (bridged[owner], bridged[other]) = (true, true);
         let mut ids = vec![edges[owner].patch + 1, edges[other].patch + 1];
         ids.sort_unstable();
-        let request = CornerRequest { points: quad, normal };
+        let request = CornerRequest { points: quad, normal, axis };
         let lengths = [open[owner].length, open[other].length];
         out.push((edges[owner].patch, request, (ids, joint::JointKind::Step.name(), "extended"), lengths));
     }
@@ -285,7 +285,8 @@ fn corners(planned: &[Planned], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
                     }
                     let far_a = va + out_a * len_a;
                     let far_b = va + out_b * len_b;
-                    out.push((*patch, CornerRequest { points: [va, far_a, far_a + far_b - va, far_b], normal }));
+                    let points = [va, far_a, far_a + far_b - va, far_b];
+                    out.push((*patch, CornerRequest { points, normal, axis: None }));
                 }
             }
         }

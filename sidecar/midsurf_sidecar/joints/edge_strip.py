@@ -19,7 +19,7 @@ from OCP.collections import HArray1_gp_Pnt
 from OCP.GC import GC_MakeSegment
 from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
 from OCP.GeomAPI import GeomAPI_Interpolate
-from OCP.gp import gp_Pln, gp_Pnt, gp_Vec
+from OCP.gp import gp_Ax2, gp_Circ, gp_Dir, gp_Pln, gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
@@ -241,11 +241,41 @@ def _planar_quad(plane: gp_Pln, points: list[Vec]) -> TopoDS_Face:
     return maker.Face()
 
 
-def corner(points: list[Vec], normal: Vec) -> TopoDS_Face:
+def corner(points: list[Vec], normal: Vec, axis: tuple[Vec, Vec] | None = None) -> TopoDS_Face:
     """The quad v, a, c, b filling the notch between two strips grown from the edges meeting at a corner v of
     a patch: a and b are their far corners over v, c closes the parallelogram. Plane if flat, else ruled
-    between v->a and b->c; oriented along the patch's `normal` at v."""
-    return _oriented_like(_corner(points), normal)
+    between v->a and b->c; oriented along the patch's `normal` at v. With `axis` (a point, a direction) the
+    quad is a band between two coaxial arcs (a step bridge round a rounded corner, `_coaxial_band`)."""
+    made = _coaxial_band(points, axis) if axis is not None else _corner(points)
+    return _oriented_like(made, normal)
+
+
+def _coaxial_band(points: list[Vec], axis: tuple[Vec, Vec]) -> TopoDS_Face:
+    """The ruled band between the arc points[0] -> points[3] and the arc points[1] -> points[2], both about
+    `axis` and turning counter-clockwise about its direction through the same angle: a band of a cone, a
+    cylinder or an annulus, bounded by exact circles so that the fuse shares them with the patches they lie on."""
+    origin, direction = axis
+    first = _arc(points[0], points[3], origin, direction)
+    second = _arc(points[1], points[2], origin, direction)
+    result = BRepFill.Face_s(first, second)
+    if result.IsNull() or not BRepCheck_Analyzer(result).IsValid():
+        raise KernelError("the band between two coaxial arcs is not valid")
+    return result
+
+
+def _arc(start: Vec, end: Vec, origin: Vec, direction: Vec) -> TopoDS_Shape:
+    """The edge of the circle about the axis (origin, unit direction) through `start`, from it counter-clockwise
+    about the direction to the angle of `end`."""
+    centre = add_scaled(origin, direction, dot(sub(start, origin), direction))
+    radial = sub(start, centre)
+    radius = norm(radial)
+    if radius <= CONFUSION:
+        raise KernelError("an arc of a step bridge has no radius")
+    across = cross(direction, scale(radial, 1.0 / radius))
+    towards = sub(end, add_scaled(origin, direction, dot(sub(end, origin), direction)))
+    angle = math.atan2(dot(towards, across), dot(towards, scale(radial, 1.0 / radius))) % (2.0 * math.pi)
+    circle = gp_Circ(gp_Ax2(gp_Pnt(*centre), gp_Dir(*direction), gp_Dir(*radial)), radius)
+    return BRepBuilderAPI_MakeEdge(circle, 0.0, angle).Edge()
 
 
 def _corner(points: list[Vec]) -> TopoDS_Face:
