@@ -27,6 +27,7 @@ from build123d import (
     Axis, Compound, Edge, Face, Location, Plane, RectangleRounded, Shape, Solid, Vector, Wire, export_step, extrude,
     thicken,
 )
+from OCP.BOPAlgo import BOPAlgo_Builder
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.GProp import GProp_GProps
@@ -376,6 +377,46 @@ def cover_pin() -> Fixture:
     return Fixture(Compound([single_solid(cover), pin]), volume, 15, solids=2)
 
 
+def partition(*solids: Solid) -> Compound:
+    """The solids cut against each other (OCCT's general fuse) so that where two touch, each has a face of its
+    own lying on the other's, as a part partitioned for meshing has; the STEP writer gives each solid its copy."""
+    builder = BOPAlgo_Builder()
+    for solid in solids:
+        builder.AddArgument(solid.wrapped)
+    builder.Perform()
+    if builder.HasErrors():
+        raise RuntimeError("partition: the general fuse failed")
+    return Compound(builder.Shape())
+
+
+def t_rib_partitioned() -> Fixture:
+    """t_rib as two solids sharing the face under the rib (a partition for meshing): the plate, its top split
+    around the rib's footprint, and the rib standing on it. The class: one piece of material split into solids
+    that share whole faces; their mid-surfaces meet across them as in t_rib (one T-joint along x = 50, z = 1).
+    Faces: 8 (plate: top in three) + 6 (rib). Volume: as t_rib, 14400.
+    """
+    part = partition(box(0, 0, 0, 100, 60, 2), box(49, 0, 2, 2, 60, 20))
+    return Fixture(part, 100 * 60 * 2 + 2 * 20 * 60, 14, solids=2)
+
+
+def l_bracket_partitioned() -> Fixture:
+    """l_bracket as two solids sharing the face at the corner: the horizontal leg (x 0..60, z 0..2, its top
+    split at x = 2) and the vertical leg standing on it (x 0..2, z 2..60). The mid-surfaces meet as in
+    l_bracket: z = 1 for x 1..60 and x = 1 for z 1..60. Faces: 7 + 6. Volume: as l_bracket, 9440.
+    """
+    part = partition(box(0, 0, 0, 60, 40, 2), box(0, 0, 2, 2, 40, 58))
+    return Fixture(part, (60 * 2 + 58 * 2) * 40, 13, solids=2)
+
+
+def t_rib_touching() -> Fixture:
+    """t_rib's plate and rib as two bodies that only touch (an assembly: the rib stands on the plate, whose top
+    stays one face): no face is shared whole, so each body keeps its own mid-surface, two components, the rib's
+    patch ending on its own rim at z = 2. Faces: 6 + 6. Volume: 14400.
+    """
+    part = Compound([box(0, 0, 0, 100, 60, 2), box(49, 0, 2, 2, 60, 20)])
+    return Fixture(part, 100 * 60 * 2 + 2 * 20 * 60, 12, solids=2)
+
+
 def plate_hairline_groove() -> Fixture:
     """Plate 300 x 300 x 2 with a ring groove 1 deep and 2e-6 wide round the vertical axis (150, 150), inner
     radius 50: the groove's floor is an annulus 2e-6 wide. Its UV centre is the ring's centre (outside it), a
@@ -711,6 +752,9 @@ PARTS: list[Callable[[], Fixture]] = [
     channel_low_end,
     channel_thick_flanges,
     plate_land,
+    t_rib_partitioned,
+    l_bracket_partitioned,
+    t_rib_touching,
 ]
 
 

@@ -7,6 +7,7 @@ use std::time::Instant;
 use crate::checks;
 use crate::error::Error;
 use crate::exit::Exit;
+use crate::geom::bodies;
 use crate::geom::inside::SolidMesh;
 use crate::kernel::client::killed_from_outside;
 use crate::kernel::client::Sidecar;
@@ -91,8 +92,7 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     let infos = stitch::patch_infos(&part, &pairings, &patches.made, args.position);
     let handles = patches.made.iter().map(|m| m.handle).collect();
     let trimmed = trim::fuse_and_trim(&mut kernel, handles, fuzzy, &stitch::branch_limits(&infos)).map_err(failed)?;
-    let meshes: Vec<SolidMesh> =
-        part.solids.iter().map(|s| SolidMesh::new(&s.graph).expect("run describes every solid with meshes")).collect();
+    let (shared, meshes) = materials(&part);
     timings.trim = since(t);
 
     let t = Instant::now();
@@ -125,8 +125,20 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
         keep_solids: args.keep_solids,
     };
     let timings = args.timings.then_some(timings);
-    let report = assemble::report(&asked, &part, &pairings, made, stitched, assembled, warnings, timings);
+    let report = assemble::report(&asked, &part, &pairings, made, &shared, stitched, assembled, warnings, timings);
     files.finish(&report)?;
     eprintln!("{}", assemble::summary_line(&args.output, &report));
     Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })
+}
+
+/// The faces the part's solids share (`geom::bodies`), and the material each solid's patches lie in: the
+/// solid, or the body it is part of.
+fn materials(part: &load::Part) -> (Vec<bodies::SharedFace>, Vec<SolidMesh>) {
+    let graphs: Vec<_> = part.solids.iter().map(|s| &s.graph).collect();
+    let (lo, hi) = graphs.iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(lo, hi), g| {
+        (lo.min(g.bbox.min), hi.max(g.bbox.max))
+    });
+    let shared = bodies::shared_faces(&graphs, tolerance::shared_face((hi - lo).length()));
+    let meshes = bodies::materials(&graphs, &shared).expect("run describes every solid with meshes");
+    (shared, meshes)
 }

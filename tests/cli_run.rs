@@ -152,6 +152,44 @@ fn a_solid_that_is_not_thin_walled_gets_no_patch_and_is_kept_on_request() {
     assert!(step.contains("solid 2 not_thin_walled"));
 }
 
+/// The figures of a run that say how its patches meet: components, open edges (free edges left in the
+/// material), the number of joints, the patch areas (sorted) and the faces its solids share (counted per solid).
+fn meeting(input: &str, dir: &std::path::Path) -> (u64, u64, usize, Vec<f64>, usize) {
+    let (out, rep) = (dir.join("mid.step"), dir.join("r.json"));
+    let o = run(input, &out, &rep, &[]);
+    assert_eq!(o.code, 0, "{input}: {}", o.stderr);
+    let report = read_json(&rep);
+    let shared =
+        report["solids"].as_array().unwrap().iter().filter_map(|s| s["shared_faces"].as_array()).flatten().count();
+    let topology = &report["topology"];
+    let mut areas: Vec<f64> = topology["patches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p["area"].as_f64().unwrap() * 1e3).round() / 1e3)
+        .collect();
+    areas.sort_by(f64::total_cmp);
+    let open = topology["free_edges"]["open_edges"].as_u64().unwrap();
+    (topology["components"].as_u64().unwrap(), open, topology["joints"].as_array().unwrap().len(), areas, shared)
+}
+
+#[test]
+fn solids_sharing_a_face_meet_across_it_and_bodies_that_only_touch_stay_apart() {
+    let dir = scratch("run-partition");
+    // A part partitioned into solids that share whole faces gets the mid-surface of the unsplit part: one
+    // component, nothing open, the same patches (the L's joint is grown across the shared face, where the
+    // unsplit L's patches simply cross, so joints are not compared).
+    for (whole, split) in [("t_rib", "t_rib_partitioned"), ("l_bracket", "l_bracket_partitioned")] {
+        let (c, open, _, areas, _) = meeting(&format!("fixtures/{whole}.step"), &dir);
+        let got = meeting(&format!("fixtures/{split}.step"), &dir);
+        assert_eq!((got.0, got.1, &got.3, got.4), (1, 0, &areas, 2), "{split} against {whole}");
+        assert_eq!((c, open), (1, 0), "{whole}");
+    }
+    // The same plate and rib as bodies that only touch: two components, no joint, the rib's patch ending on its
+    // own rim (20 high from z = 2, not grown down to the plate's mid-plane).
+    assert_eq!(meeting("fixtures/t_rib_touching.step", &dir), (2, 0, 0, vec![1200.0, 6000.0], 0));
+}
+
 #[test]
 fn bad_input_writes_nothing() {
     let dir = scratch("run-bad");

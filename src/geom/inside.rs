@@ -5,11 +5,13 @@
 //! on a 500-face part). The box around a long skewed ray holds a band of the part: on a plate with 900 holes
 //! the rays of one point met some thousand triangles that way, and the point tests took 2 of its 13 s.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 use rstar::{Envelope, RTree, RTreeObject, SelectionFunction, AABB};
 
 use super::ray::hit_triangle;
-use crate::model::face_graph::FaceGraph;
+use crate::model::face_graph::{Face, FaceGraph};
 
 struct Triangle {
     corners: [DVec3; 3],
@@ -23,8 +25,10 @@ impl RTreeObject for Triangle {
     }
 }
 
+/// Cheap to clone: the solids of one body share its mesh (`geom::bodies`).
+#[derive(Clone)]
 pub struct SolidMesh {
-    tree: RTree<Triangle>,
+    tree: Arc<RTree<Triangle>>,
     lo: DVec3,
     hi: DVec3,
     /// Boxes are widened by this when a ray is tested against them, so that a hit the triangle test accepts
@@ -45,8 +49,14 @@ const DIRECTIONS: [DVec3; 3] = [
 impl SolidMesh {
     /// None when the graph was described without meshes.
     pub fn new(graph: &FaceGraph) -> Option<SolidMesh> {
+        SolidMesh::of_faces(graph.faces.iter())
+    }
+
+    /// The material bounded by `faces` (of one solid, or of the solids of a body without the faces they
+    /// share); None when a face was described without a mesh.
+    pub fn of_faces<'a>(faces: impl Iterator<Item = &'a Face>) -> Option<SolidMesh> {
         let mut triangles = Vec::new();
-        for face in &graph.faces {
+        for face in faces {
             let mesh = face.mesh.as_ref()?;
             for t in &mesh.triangles {
                 let corners = t.map(|i| mesh.vertices[i as usize]);
@@ -58,7 +68,7 @@ impl SolidMesh {
         let lo = triangles.iter().map(|t| DVec3::from(t.envelope.lower())).fold(DVec3::INFINITY, DVec3::min);
         let hi = triangles.iter().map(|t| DVec3::from(t.envelope.upper())).fold(DVec3::NEG_INFINITY, DVec3::max);
         let margin = BOX_MARGIN * (hi - lo).length();
-        Some(SolidMesh { tree: RTree::bulk_load(triangles), lo, hi, margin })
+        Some(SolidMesh { tree: Arc::new(RTree::bulk_load(triangles)), lo, hi, margin })
     }
 
     pub fn contains(&self, p: DVec3) -> bool {

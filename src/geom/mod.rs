@@ -1,5 +1,6 @@
 //! Small geometric kernels computed in Rust: 2D clipping, rays, frames.
 
+pub mod bodies;
 pub mod clip;
 pub mod inside;
 pub mod ray;

@@ -5,4 +5,5 @@ pub mod face_graph;
 pub(crate) mod params;
 pub(crate) mod shapes;
 pub mod tolerance;
+pub(crate) mod union_find;
 pub(crate) mod warning;

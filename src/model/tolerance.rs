@@ -87,3 +87,10 @@ pub fn part_fuse<'a>(solids: impl IntoIterator<Item = &'a Tolerances>) -> f64 {
         0.0
     }
 }
+
+/// Two faces of different solids whose areas, centroids and boxes agree within this are copies of one face
+/// (`geom::bodies`): 1e-5 of the part's diagonal, ten times `Tolerances::point`, since the copies are
+/// described separately (their properties integrated apart), and still far below any feature.
+pub fn shared_face(diagonal: f64) -> f64 {
+    diagonal * 1e-5
+}

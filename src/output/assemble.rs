@@ -3,11 +3,12 @@
 use std::path::Path;
 
 use super::report::{
-    legend, LegendEntry, Parameters, PatchReport, Report, ResultSummary, RoleCounts, SolidReport, Timings,
-    TrimmedReport, Unpaired, Warning, REPORT_VERSION,
+    legend, LegendEntry, Parameters, PatchReport, Report, ResultSummary, RoleCounts, SharedFaceReport, SolidReport,
+    Timings, TrimmedReport, Unpaired, Warning, REPORT_VERSION,
 };
 use super::shells::{written_area, Assembled};
 use super::topology;
+use crate::geom::bodies::SharedFace;
 use crate::load::Part;
 use crate::model::face_graph::FaceGraph;
 use crate::model::params::Position;
@@ -38,6 +39,7 @@ pub fn report(
     part: &Part,
     pairings: &[SolidPairing],
     made: &[Made],
+    shared: &[SharedFace],
     stitched: Outcome,
     assembled: Assembled,
     mut warnings: Vec<Warning>,
@@ -73,6 +75,7 @@ pub fn report(
             .enumerate()
             .map(|(i, (s, sp))| SolidReport {
                 kept_as_solid: asked.keep_solids && !sp.class.is_thin_walled(),
+                shared_faces: shared_face_reports(i, shared),
                 ..solid_report(i + 1, &s.graph, sp)
             })
             .collect(),
@@ -161,5 +164,14 @@ fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidRepo
         unpaired,
         paired_share: sp.paired_share,
         paired_skin_share: sp.paired_skin_share,
+        shared_faces: Vec::new(),
     }
+}
+
+/// The faces solid `solid` (0-based) shares with others, seen from it.
+fn shared_face_reports(solid: usize, shared: &[SharedFace]) -> Vec<SharedFaceReport> {
+    let seen = |(own, other): ((usize, usize), (usize, usize))| {
+        (own.0 == solid).then_some(SharedFaceReport { face: own.1, other_solid: other.0 + 1, other_face: other.1 })
+    };
+    shared.iter().flat_map(|&[a, b]| [seen((a, b)), seen((b, a))]).flatten().collect()
 }

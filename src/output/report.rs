@@ -70,6 +70,19 @@ pub struct SolidReport {
     pub unpaired: Vec<Unpaired>,
     pub paired_share: f64,
     pub paired_skin_share: f64,
+    /// Faces this solid shares whole with other solids of the file (a partition): the stitching treats the
+    /// solids as one body, and their patches meet across these faces.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub shared_faces: Vec<SharedFaceReport>,
+}
+
+/// A face of a solid lying on a face of another solid, facing the other way.
+#[derive(Debug, Clone, Serialize)]
+pub struct SharedFaceReport {
+    pub face: usize,
+    /// 1-based.
+    pub other_solid: usize,
+    pub other_face: usize,
 }
 
 #[derive(Debug, Clone, Default, Serialize)]

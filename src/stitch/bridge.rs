@@ -104,8 +104,9 @@ fn course(points: &[DVec3]) -> Option<Course> {
     let (a, b) = (*points.first()?, *points.last()?);
     let length = a.distance(b);
     let u = (b - a).normalize_or_zero();
-    let straight =
-        points.iter().all(|p| (*p - a).reject_from_normalized(u).length() <= STRAIGHT_SHARE * length.max(STRAIGHT_FLOOR));
+    let straight = points
+        .iter()
+        .all(|p| (*p - a).reject_from_normalized(u).length() <= STRAIGHT_SHARE * length.max(STRAIGHT_FLOOR));
     if straight {
         return (length > 0.0).then_some(Course::Line { start: a, direction: u, length });
     }

@@ -16,10 +16,7 @@ use serde::Serialize;
 
 use crate::kernel::{Kernel, SidecarError};
 use crate::model::shapes::{Fused, FusedFace, Handle};
-
-use union_find::{find, union};
-
-mod union_find;
+use crate::model::union_find::{find, union};
 
 /// The patches fused, with the pieces kept and the branches dropped.
 pub struct Trimmed {

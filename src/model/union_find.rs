@@ -1,4 +1,4 @@
-//! A union-find forest, for the grouping of pieces (patch trimming).
+//! A union-find forest: pieces of patches joined in trimming, solids joined into bodies by the faces they share.
 
 /// The root of `x` in the forest `parent`, halving the path on the way.
 pub fn find(parent: &mut [usize], mut x: usize) -> usize {
