@@ -417,6 +417,16 @@ def t_rib_touching() -> Fixture:
     return Fixture(part, 100 * 60 * 2 + 2 * 20 * 60, 12, solids=2)
 
 
+def plates_butted() -> Fixture:
+    """Two plates 2 thick butted end to end, as two bodies of an assembly: plate 1 x 0..50, y 0..60; plate 2
+    x 50..100, y 10..50, its end face lying on part of plate 1's. They only touch (no face is shared whole),
+    so their mid-patches stay two components, although their edges meet along x = 50, y 10..50.
+    Faces: 6 + 6. Volume: 50 * 60 * 2 + 50 * 40 * 2 = 10000.
+    """
+    part = Compound([box(0, 0, 0, 50, 60, 2), box(50, 10, 0, 50, 40, 2)])
+    return Fixture(part, 50 * 60 * 2 + 50 * 40 * 2, 12, solids=2)
+
+
 def plate_hairline_groove() -> Fixture:
     """Plate 300 x 300 x 2 with a ring groove 1 deep and 2e-6 wide round the vertical axis (150, 150), inner
     radius 50: the groove's floor is an annulus 2e-6 wide. Its UV centre is the ring's centre (outside it), a
@@ -755,6 +765,7 @@ PARTS: list[Callable[[], Fixture]] = [
     t_rib_partitioned,
     l_bracket_partitioned,
     t_rib_touching,
+    plates_butted,
 ]
 
 

@@ -89,10 +89,13 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     let t = Instant::now();
     // Solids that are not thin-walled have no patch to fuse: their tolerances say nothing here.
     let fuzzy = tolerance::part_fuse(pairings.iter().filter(|p| p.class.is_thin_walled()).map(|p| &p.tolerances));
-    let infos = stitch::patch_infos(&part, &pairings, &patches.made, args.position);
-    let handles = patches.made.iter().map(|m| m.handle).collect();
-    let trimmed = trim::fuse_and_trim(&mut kernel, handles, fuzzy, &stitch::branch_limits(&infos)).map_err(failed)?;
     let (shared, meshes) = materials(&part);
+    let body_of = bodies::bodies(part.solids.len(), &shared);
+    let infos = stitch::patch_infos(&part, &pairings, &patches.made, args.position, &body_of);
+    let handles = patches.made.iter().map(|m| m.handle).collect();
+    let limits = stitch::branch_limits(&infos);
+    let trimmed =
+        trim::fuse_and_trim(&mut kernel, handles, &stitch::patch_bodies(&infos), fuzzy, &limits).map_err(failed)?;
     timings.trim = since(t);
 
     let t = Instant::now();

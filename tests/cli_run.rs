@@ -188,6 +188,8 @@ fn solids_sharing_a_face_meet_across_it_and_bodies_that_only_touch_stay_apart() 
     // The same plate and rib as bodies that only touch: two components, no joint, the rib's patch ending on its
     // own rim (20 high from z = 2, not grown down to the plate's mid-plane).
     assert_eq!(meeting("fixtures/t_rib_touching.step", &dir), (2, 0, 0, vec![1200.0, 6000.0], 0));
+    // Two plates butted end to end whose patches' edges meet along the contact: still two components.
+    assert_eq!(meeting("fixtures/plates_butted.step", &dir), (2, 0, 0, vec![2000.0, 3000.0], 0));
 }
 
 #[test]

@@ -141,7 +141,14 @@ def fuse(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         raise BadArgs(f"patch handles {repeated} are listed more than once")
     fuzzy = require_non_negative(args, "fuzzy")
     split_internal = optional_bool(args, "split_internal", False)
-    fused, described = patch_fuse.fuse([store.get(h) for h in handles], fuzzy, split_internal)
+    bodies = args.get("bodies")
+    if bodies is not None and (
+        not isinstance(bodies, list)
+        or len(bodies) != len(handles)
+        or not all(isinstance(b, int) and not isinstance(b, bool) and b >= 0 for b in bodies)
+    ):
+        raise BadArgs(f"`bodies` must list a body number (integer >= 0) per patch, got {bodies!r}")
+    fused, described = patch_fuse.fuse([store.get(h) for h in handles], fuzzy, split_internal, bodies)
     return {"handle": store.put(fused), **described}
 
 

@@ -83,6 +83,23 @@ def test_t_junction_splits_the_base_and_shares_the_foot(client):
     assert Counter(len(e["faces"]) for e in fused["edges"]) == {1: 9, 3: 1}
 
 
+def test_patches_of_different_bodies_are_fused_apart(client):
+    # The T of the test above, its two patches in two bodies: neither splits the other, nothing is shared; the
+    # third patch, of the first body, still splits the base where it crosses it.
+    third = vertical(45.0, z0=1.0)
+    handles = put_patches(client, horizontal(), vertical(30.0, z0=1.0), third)
+    fused = client.ok("fuse", patches=handles, fuzzy=1e-6, bodies=[0, 5, 0])
+    check_consistent(fused)
+    pieces = sorted((f["patch"], round(f["area"], 6)) for f in fused["faces"])
+    assert pieces == [(0, 600), (0, 1800), (1, 1560), (2, 1560)]
+    assert Counter(len(e["faces"]) for e in fused["edges"]) == {1: 6 + 3 + 4, 3: 1}
+    (foot,) = [e for e in fused["edges"] if len(e["faces"]) == 3]
+    assert on_line(foot, x=45.0, z=1.0)
+    # Faces follow the bodies in order of their first patches: body 0's pieces, then body 5's.
+    assert [f["patch"] for f in fused["faces"]][-1] == 1
+    assert BRepCheck_Analyzer(client.session.store.get(fused["handle"])).IsValid()
+
+
 def test_fuzzy_closes_a_small_gap(client):
     gap = 1e-5
     lifted = vertical(30.0, z0=1.0 + gap)
@@ -163,6 +180,8 @@ def test_open_box_mid_walls_share_every_crossing(client):
         ({"patches": []}, "`fuzzy`"),
         ({"patches": [], "fuzzy": -1e-4}, "`fuzzy` must be >= 0"),
         ({"patches": [], "fuzzy": "tight"}, "`fuzzy`"),
+        ({"patches": [], "fuzzy": 1e-4, "bodies": [0]}, "`bodies`"),
+        ({"patches": [], "fuzzy": 1e-4, "bodies": "all"}, "`bodies`"),
     ],
 )
 def test_bad_arguments(client, args, needle):

@@ -27,9 +27,18 @@ pub trait Kernel {
     fn call<R: DeserializeOwned>(&mut self, request: &Request) -> Result<R, SidecarError>;
 
     /// The patches behind `patches` fused into one shape, split where they cross (`split_internal`: also along
-    /// joints that end inside a face).
-    fn fuse(&mut self, patches: Vec<Handle>, fuzzy: f64, split_internal: bool) -> Result<Fused, SidecarError> {
-        self.call::<protocol::Fused>(&Request::Fuse { patches, fuzzy, split_internal }).map(Fused::from)
+    /// joints that end inside a face); `bodies` (the body of each patch) keeps the bodies apart: patches of
+    /// different bodies are fused separately and never share an edge.
+    fn fuse(
+        &mut self,
+        patches: Vec<Handle>,
+        bodies: &[usize],
+        fuzzy: f64,
+        split_internal: bool,
+    ) -> Result<Fused, SidecarError> {
+        let apart = bodies.iter().any(|&b| Some(&b) != bodies.first());
+        let bodies = if apart { bodies.to_vec() } else { Vec::new() };
+        self.call::<protocol::Fused>(&Request::Fuse { patches, fuzzy, split_internal, bodies }).map(Fused::from)
     }
 
     /// One shell per set of faces of the fused shape `handle`, the faces of each set of `merge` made one face

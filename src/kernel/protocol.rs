@@ -123,11 +123,15 @@ pub enum Request {
         fill: Vec<usize>,
     },
     /// `split_internal`: split faces along joints that end inside them (for the final result only).
+    /// `bodies`: the body of each patch, when they are not all one (patches of different bodies are fused
+    /// apart).
     Fuse {
         patches: Vec<u64>,
         fuzzy: f64,
         #[serde(skip_serializing_if = "std::ops::Not::not")]
         split_internal: bool,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        bodies: Vec<usize>,
     },
     MakeShells {
         handle: u64,

@@ -189,7 +189,8 @@ pub(super) fn grow<K: Kernel>(
         order.push(k);
         handles.push(gathered.handle);
     }
-    let mut again = kernel.fuse(handles, fuzzy, true)?;
+    let bodies: Vec<usize> = order.iter().map(|&k| patches[k].body).collect();
+    let mut again = kernel.fuse(handles, &bodies, fuzzy, true)?;
     for face in &mut again.faces {
         face.patch = order[face.patch];
     }

@@ -22,7 +22,7 @@ use crate::model::warning::Warning;
 use crate::trim::{find_branches, keep_mask, outside_material, Branch, Trimmed};
 use edges::classify_free;
 use grow::{grow, Grown, JointTally, Pass};
-pub use reach::{branch_limits, patch_infos};
+pub use reach::{branch_limits, patch_bodies, patch_infos};
 
 /// What one patch brings: its thickness, its solid (index into the solids' meshes) and how far its joints
 /// may reach.
@@ -32,6 +32,8 @@ pub struct PatchInfo {
     /// From the patch to the middle of its wall along the patch normal (0 for a mid-patch).
     pub to_mid: f64,
     pub solid: usize,
+    /// The body of its solid (`geom::bodies`): patches of different bodies are fused apart.
+    pub body: usize,
     pub reach: f64,
     /// A free edge closer than this to the boundary is on the rim (`tolerance::on_rim`).
     pub on_rim: f64,

@@ -164,6 +164,7 @@ mod tests {
             thickness: 2.0,
             to_mid: 0.0,
             solid: 0,
+            body: 0,
             reach: 3.0,
             on_rim: 0.2,
             junction: false,

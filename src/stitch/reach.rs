@@ -11,7 +11,14 @@ use crate::patch::make::Made;
 use crate::trim::branch_limit;
 
 /// Per made patch (in order), what stitching needs to know of it.
-pub fn patch_infos(part: &Part, pairings: &[SolidPairing], made: &[Made], position: Position) -> Vec<PatchInfo> {
+/// `bodies`: the body of each solid.
+pub fn patch_infos(
+    part: &Part,
+    pairings: &[SolidPairing],
+    made: &[Made],
+    position: Position,
+    bodies: &[usize],
+) -> Vec<PatchInfo> {
     // Per solid: some patch of it was made with a junction loop filled.
     let mut junctions = vec![false; part.solids.len()];
     for m in made {
@@ -27,6 +34,7 @@ pub fn patch_infos(part: &Part, pairings: &[SolidPairing], made: &[Made], positi
                 thickness: m.plan.thickness.mean,
                 to_mid: m.plan.to_mid,
                 solid: m.solid - 1,
+                body: bodies[m.solid - 1],
                 reach: tolerances.joint_reach + skin,
                 on_rim: tolerance::on_rim(m.plan.thickness.mean, part.solids[m.solid - 1].mesh_tolerance),
                 junction: junctions[m.solid - 1],
@@ -35,6 +43,11 @@ pub fn patch_infos(part: &Part, pairings: &[SolidPairing], made: &[Made], positi
             }
         })
         .collect()
+}
+
+/// The body of each patch.
+pub fn patch_bodies(patches: &[PatchInfo]) -> Vec<usize> {
+    patches.iter().map(|p| p.body).collect()
 }
 
 /// How far a branch may hang past each patch.

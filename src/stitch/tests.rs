@@ -60,7 +60,17 @@ fn fused(faces: Vec<Value>, edges: Vec<Value>) -> Fused {
 }
 
 fn info(thickness: f64, wall: (usize, usize)) -> PatchInfo {
-    PatchInfo { thickness, to_mid: 0.0, solid: 0, reach: 4.5, on_rim: 0.2, junction: false, wall, freeform: false }
+    PatchInfo {
+        thickness,
+        to_mid: 0.0,
+        solid: 0,
+        body: 0,
+        reach: 4.5,
+        on_rim: 0.2,
+        junction: false,
+        wall,
+        freeform: false,
+    }
 }
 
 /// Runs stitch on `fused` (every piece kept) in a solid filling `solid` (origin, size), with the probes and pass

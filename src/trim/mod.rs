@@ -30,10 +30,11 @@ pub struct Trimmed {
 pub fn fuse_and_trim<K: Kernel>(
     kernel: &mut K,
     patches: Vec<Handle>,
+    bodies: &[usize],
     fuzzy: f64,
     limits: &[f64],
 ) -> Result<Trimmed, SidecarError> {
-    let fused = kernel.fuse(patches, fuzzy, false)?;
+    let fused = kernel.fuse(patches, bodies, fuzzy, false)?;
     let branches = find_branches(&fused, limits);
     let keep = keep_mask(fused.faces.len(), &branches);
     Ok(Trimmed { fused, keep, branches })

@@ -20,8 +20,39 @@ from ..protocol.errors import KernelError
 from .fused_graph import describe
 
 
-def fuse(patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool = False) -> tuple[TopoDS_Shape, dict[str, Any]]:
-    """(F, the reply's `faces` and `edges`).
+def fuse(
+    patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool = False, bodies: list[int] | None = None
+) -> tuple[TopoDS_Shape, dict[str, Any]]:
+    """(F, the reply's `faces` and `edges`). `bodies` (one per patch, optional): patches of different bodies are
+    fused apart and F holds the faces of every body's fuse, so that bodies that only touch never share an edge
+    (nor split each other where they overlap).
+    """
+    groups: dict[int, list[int]] = {}
+    for k, body in enumerate(bodies if bodies is not None else [0] * len(patches)):
+        groups.setdefault(body, []).append(k)
+    if len(groups) <= 1:
+        fused, face_map, patch_of = _fuse_one(patches, fuzzy, split_internal)
+        return fused, describe(fused, face_map, patch_of)
+    fused, maker = TopoDS_Compound(), BRep_Builder()
+    maker.MakeCompound(fused)
+    owner: list[tuple[TopoDS_Shape, int]] = []
+    for members in groups.values():
+        part, part_faces, part_patch = _fuse_one([patches[k] for k in members], fuzzy, split_internal)
+        owner.extend((part_faces.FindKey(i + 1), members[p]) for i, p in enumerate(part_patch))
+        maker.Add(fused, part)
+    face_map = indexed_map(fused, TopAbs_FACE)
+    patch_of = [-1] * face_map.Size()
+    for face, patch in owner:
+        patch_of[face_map.FindIndex(face) - 1] = patch
+    if -1 in patch_of:
+        raise KernelError("a face of a body's fuse is missing from the whole")
+    return fused, describe(fused, face_map, patch_of)
+
+
+def _fuse_one(
+    patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool
+) -> tuple[TopoDS_Shape, IndexedShapeMap, list[int]]:
+    """`fuse` of patches all of one body: (F, its faces, the patch of each).
 
     Every FACE of every patch is an argument of its own, not every patch: BOPAlgo_Builder does not
     intersect the sub-shapes of one argument with each other, so the separately offset faces of a patch
@@ -59,7 +90,7 @@ def fuse(patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool = False
         split_fused, patch_of = _split_faces(fused, face_map, patch_of, _internal_edge_lines(fused, face_map), fuzzy)
         if split_fused is not fused:
             fused, face_map = split_fused, indexed_map(split_fused, TopAbs_FACE)
-    return fused, describe(fused, face_map, patch_of)
+    return fused, face_map, patch_of
 
 
 def _internal_edge_lines(fused: TopoDS_Shape, face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
