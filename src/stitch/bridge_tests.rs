@@ -4,16 +4,12 @@ use super::*;
 
 fn loose(patch: usize, thickness: f64, x: f64, z: f64, y: (f64, f64), outward: DVec3) -> LooseEdge {
     let points = (0..5).map(|k| DVec3::new(x, y.0 + (y.1 - y.0) * k as f64 / 4.0, z)).collect();
-    LooseEdge {
-        patch,
-        wall: (1, patch),
-        thickness,
-        nearest: f64::INFINITY,
-        open: true,
-        points,
-        normal: DVec3::Z,
-        outward,
-    }
+    open_edge(patch, thickness, points, DVec3::Z, outward)
+}
+
+/// An open edge of patch `patch` (its own wall) that found no partner.
+fn open_edge(patch: usize, thickness: f64, points: Vec<DVec3>, normal: DVec3, outward: DVec3) -> LooseEdge {
+    LooseEdge { patch, wall: (1, patch), thickness, nearest: f64::INFINITY, open: true, points, normal, outward }
 }
 
 #[test]
@@ -98,16 +94,7 @@ fn arc(patch: usize, thickness: f64, r: f64, z: f64, (a0, a1): (f64, f64), outwa
     let at = |k: usize| a0 + (a1 - a0) * k as f64 / 4.0;
     let points = (0..5).map(|k| DVec3::new(r * at(k).cos(), r * at(k).sin(), z)).collect();
     let mid = at(2);
-    LooseEdge {
-        patch,
-        wall: (1, patch),
-        thickness,
-        nearest: f64::INFINITY,
-        open: true,
-        points,
-        normal: DVec3::new(mid.cos(), mid.sin(), 0.0),
-        outward,
-    }
+    open_edge(patch, thickness, points, DVec3::new(mid.cos(), mid.sin(), 0.0), outward)
 }
 
 #[test]
