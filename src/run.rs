@@ -7,8 +7,7 @@ use std::time::Instant;
 use crate::checks;
 use crate::error::Error;
 use crate::exit::Exit;
-use crate::geom::bodies;
-use crate::geom::inside::SolidMesh;
+use crate::geom::bodies::Bodies;
 use crate::kernel::client::killed_from_outside;
 use crate::kernel::client::Sidecar;
 use crate::kernel::SidecarError;
@@ -89,9 +88,10 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     let t = Instant::now();
     // Solids that are not thin-walled have no patch to fuse: their tolerances say nothing here.
     let fuzzy = tolerance::part_fuse(pairings.iter().filter(|p| p.class.is_thin_walled()).map(|p| &p.tolerances));
-    let (shared, meshes) = materials(&part);
-    let body_of = bodies::bodies(part.solids.len(), &shared);
-    let infos = stitch::patch_infos(&part, &pairings, &patches.made, args.position, &body_of);
+    let graphs: Vec<_> = part.solids.iter().map(|s| &s.graph).collect();
+    let Bodies { shared, of_solid, materials: meshes } =
+        Bodies::of(&graphs).expect("run describes every solid with meshes");
+    let infos = stitch::patch_infos(&part, &pairings, &patches.made, args.position, &of_solid);
     let handles = patches.made.iter().map(|m| m.handle).collect();
     let limits = stitch::branch_limits(&infos);
     let trimmed =
@@ -132,16 +132,4 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     files.finish(&report)?;
     eprintln!("{}", assemble::summary_line(&args.output, &report));
     Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })
-}
-
-/// The faces the part's solids share (`geom::bodies`), and the material each solid's patches lie in: the
-/// solid, or the body it is part of.
-fn materials(part: &load::Part) -> (Vec<bodies::SharedFace>, Vec<SolidMesh>) {
-    let graphs: Vec<_> = part.solids.iter().map(|s| &s.graph).collect();
-    let (lo, hi) = graphs.iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(lo, hi), g| {
-        (lo.min(g.bbox.min), hi.max(g.bbox.max))
-    });
-    let shared = bodies::shared_faces(&graphs, tolerance::shared_face((hi - lo).length()));
-    let meshes = bodies::materials(&graphs, &shared).expect("run describes every solid with meshes");
-    (shared, meshes)
 }

@@ -5,10 +5,13 @@
 //! solids meet across the faces they share as they would inside one solid. Solids that only touch (a cover
 //! resting on a frame) share no whole face and stay apart.
 
+use std::collections::{BTreeMap, BTreeSet};
+
 use glam::DVec3;
 
 use super::inside::SolidMesh;
 use crate::model::face_graph::{Face, FaceGraph};
+use crate::model::tolerance;
 use crate::model::union_find::{find, union};
 
 /// A face of one solid lying on a face of another: (solid, face) both ways round, lower solid first.
@@ -75,26 +78,44 @@ pub fn bodies(solids: usize, shared: &[SharedFace]) -> Vec<usize> {
     (0..solids).map(|s| find(&mut parent, s)).collect()
 }
 
-/// The material each solid's patches lie in: the solid's own mesh, or for a solid of a body of several, the
-/// body's (every face of its solids but the `shared` ones). None when a face was described without a mesh.
-pub fn materials(graphs: &[&FaceGraph], shared: &[SharedFace]) -> Option<Vec<SolidMesh>> {
-    let body = bodies(graphs.len(), shared);
-    let inner: std::collections::BTreeSet<(usize, usize)> = shared.iter().flatten().copied().collect();
-    let inner = &inner;
-    let mut of_body: Vec<Option<SolidMesh>> = vec![None; graphs.len()];
-    for (s, &b) in body.iter().enumerate() {
-        if of_body[b].is_some() {
-            continue;
-        }
-        let members: Vec<usize> = (s..graphs.len()).filter(|&t| body[t] == b).collect();
-        of_body[b] = Some(if members.len() == 1 {
-            SolidMesh::new(graphs[s])?
-        } else {
-            let faces = members.into_iter().flat_map(|t| graphs[t].faces.iter().map(move |f| (t, f)));
-            SolidMesh::of_faces(faces.filter(|(t, f)| !inner.contains(&(*t, f.id))).map(|(_, f)| f))?
-        });
+/// The solids of a part grouped into bodies, what joins them, and the material each solid's patches lie in.
+pub struct Bodies {
+    pub shared: Vec<SharedFace>,
+    /// The body of each solid (`bodies`).
+    pub of_solid: Vec<usize>,
+    /// Per solid: its body's material (`materials`).
+    pub materials: Vec<SolidMesh>,
+}
+
+impl Bodies {
+    /// The bodies of the solids `graphs`, faces matched within `tolerance::shared_face` of the part's
+    /// diagonal. None when a face was described without a mesh.
+    pub fn of(graphs: &[&FaceGraph]) -> Option<Bodies> {
+        let (lo, hi) = graphs
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), g| (lo.min(g.bbox.min), hi.max(g.bbox.max)));
+        let shared = shared_faces(graphs, tolerance::shared_face((hi - lo).length()));
+        let of_solid = bodies(graphs.len(), &shared);
+        let materials = materials(graphs, &shared, &of_solid)?;
+        Some(Bodies { shared, of_solid, materials })
     }
-    Some(body.iter().map(|&b| of_body[b].clone().expect("every body's mesh is made")).collect())
+}
+
+/// The material each solid's patches lie in (`body`: the body of each solid): the solid's own mesh, or for a
+/// solid of a body of several, the body's (every face of its solids but the `shared` ones), one mesh shared by
+/// its solids. None when a face was described without a mesh.
+pub fn materials(graphs: &[&FaceGraph], shared: &[SharedFace], body: &[usize]) -> Option<Vec<SolidMesh>> {
+    let inner: &BTreeSet<(usize, usize)> = &shared.iter().flatten().copied().collect();
+    let mut members: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (s, &b) in body.iter().enumerate() {
+        members.entry(b).or_default().push(s);
+    }
+    let mut of_body: BTreeMap<usize, SolidMesh> = BTreeMap::new();
+    for (b, solids) in members {
+        let faces = solids.iter().flat_map(|&t| graphs[t].faces.iter().filter(move |f| !inner.contains(&(t, f.id))));
+        of_body.insert(b, SolidMesh::of_faces(faces)?);
+    }
+    Some(body.iter().map(|b| of_body[b].clone()).collect())
 }
 
 #[cfg(test)]
@@ -120,7 +141,7 @@ mod tests {
         assert_eq!(bodies(2, &shared), vec![0, 0]);
         // The body's material runs on across the cut: a point just past it is inside, and a ray from one half
         // leaves the material at the far end of the other.
-        let m = materials(&[&a, &b], &shared).unwrap();
+        let m = materials(&[&a, &b], &shared, &[0, 0]).unwrap();
         assert!(m[0].contains(DVec3::new(50.5, 30.0, 1.0)));
         assert!((m[0].exit(DVec3::new(40.0, 30.0, 1.0), DVec3::X, 100.0).unwrap() - 60.0).abs() < 1e-9);
         let alone = SolidMesh::new(&a).unwrap();

@@ -11,7 +11,7 @@ use glam::DVec3;
 use rstar::{Envelope, RTree, RTreeObject, SelectionFunction, AABB};
 
 use super::ray::hit_triangle;
-use crate::model::face_graph::{Face, FaceGraph};
+use crate::model::face_graph::Face;
 
 struct Triangle {
     corners: [DVec3; 3],
@@ -47,8 +47,10 @@ const DIRECTIONS: [DVec3; 3] = [
 ];
 
 impl SolidMesh {
-    /// None when the graph was described without meshes.
-    pub fn new(graph: &FaceGraph) -> Option<SolidMesh> {
+    /// One solid's material (tests; a run builds every solid's through `geom::bodies`). None when the graph
+    /// was described without meshes.
+    #[cfg(test)]
+    pub fn new(graph: &crate::model::face_graph::FaceGraph) -> Option<SolidMesh> {
         SolidMesh::of_faces(graph.faces.iter())
     }
 
