@@ -230,8 +230,8 @@ fn line_bridge(
     if !bridgeable(et, ek, gap) {
         return None;
     }
-    let level = offset.dot(et.normal).abs();
-    if level > reach || offset.dot(et.outward).abs() > reach {
+    let (level, across) = (offset.dot(et.normal).abs(), offset.dot(et.outward));
+    if level > reach || across.abs() > reach {
         return None;
     }
     let (b0, b1) = ((b - a).dot(u), (b - a).dot(u) + lb * u.dot(v).signum());
@@ -239,12 +239,7 @@ fn line_bridge(
     if s1 - s0 <= SHARED_STRETCH_SHARE * la {
         return None;
     }
-    // A ramp only where the thin edge spans the whole thick edge, over at least the larger thickness: the thick
-    // patch is cut along a line through it, and a shorter ramp would cut away the rest of that patch's edge, a
-    // short one (the corner of a notch) pieces beside the notch, and what joins there.
-    let spans = s1 - s0 >= STEP_SPAN_SHARE * lb && s1 - s0 >= reach;
-    // Only a bridge steeper than 45 degrees needs laying down; a flatter one already spans the gap.
-    let ramp = spans && level > STEP_LEVEL_SHARE * et.thickness && level > offset.dot(et.outward);
+    let ramp = laid_down(et, s1 - s0 >= STEP_SPAN_SHARE * lb && s1 - s0 >= reach, level, across);
     let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
     let far = offset - ek.outward * run;
     let on_a = |s: f64| a + u * s;
@@ -301,16 +296,25 @@ fn arc_bridge(
         return None;
     }
     let (normal, outward) = (turned(et.normal, mid_a, middle), turned(et.outward, mid_a, middle));
-    let level = offset.dot(normal).abs();
-    if level > reach || offset.dot(outward).abs() > reach {
+    let (level, across) = (offset.dot(normal).abs(), offset.dot(outward));
+    if level > reach || across.abs() > reach {
         return None;
     }
-    let spans = s1 - s0 >= STEP_SPAN_SHARE * sb && (s1 - s0) * ra.min(rb) >= reach;
-    let ramp = spans && level > STEP_LEVEL_SHARE * et.thickness && level > offset.dot(outward);
+    let ramp = laid_down(et, s1 - s0 >= STEP_SPAN_SHARE * sb && (s1 - s0) * ra.min(rb) >= reach, level, across);
     let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
     let far = |s: f64| on_b(s) - turned(ek.outward, mid_b, s) * run;
     let quad = [on_a(s0), far(s0), far(s1), on_a(s1)];
     Some((gap, owned(edges, thin, thick, first, ramp, quad, Some([ca, axis]))))
+}
+
+/// Whether the bridge from the thin edge `et` is laid down into a ramp, given its offset to the thick edge along
+/// the thin patch's normal (`level`) and outward direction (`across`). A ramp only where the thin edge `spans`
+/// the whole thick edge, over at least the larger thickness: the thick patch is cut along a line through it, and
+/// a shorter ramp would cut away the rest of that patch's edge, a short one (the corner of a notch) pieces
+/// beside the notch, and what joins there. Only a bridge steeper than 45 degrees needs laying down; a flatter
+/// one already spans the gap.
+fn laid_down(et: &LooseEdge, spans: bool, level: f64, across: f64) -> bool {
+    spans && level > STEP_LEVEL_SHARE * et.thickness && level > across
 }
 
 /// The bridge `quad` between `thin` and `thick` given to its owner: the thinner edge for a ramp, else the pair's
