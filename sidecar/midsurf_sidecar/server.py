@@ -64,8 +64,8 @@ class Session:
         started = time.perf_counter()
         try:
             result = _profiled(self.ops[op], self.store, args)
-        except Exception:
-            _trace(f"{op} failed", time.perf_counter() - started)
+        except Exception as error:
+            _trace(f"{op} failed", time.perf_counter() - started, str(error))
             raise
         _trace(op, time.perf_counter() - started)
         _test_stall(op)
@@ -89,7 +89,7 @@ class Session:
 
 
 # Profiling (docs/benchmarks.md): MIDSURF_TRACE_OPS=FILE appends "op seconds" per request to FILE ("op failed
-# seconds" for one that raised).
+# seconds" for one that raised, then "# " and the first line of its error).
 TRACE_VAR = "MIDSURF_TRACE_OPS"
 
 
@@ -112,11 +112,14 @@ def _profiled(run: Any, store: HandleStore, args: dict[str, Any]) -> dict[str, A
         _profile.dump_stats(path)
 
 
-def _trace(op: str, seconds: float) -> None:
+def _trace(op: str, seconds: float, why: str = "") -> None:
     path = os.environ.get(TRACE_VAR)
     if path:
+        line = f"{op} {seconds:.6f}\n"
+        if why:
+            line += f"# {why.splitlines()[0]}\n"
         with open(path, "a", encoding="utf-8") as trace:
-            trace.write(f"{op} {seconds:.6f}\n")
+            trace.write(line)
 
 
 # Fault injection for tests only: MIDSURF_TEST_STALL="OP:MARKER" makes the sidecar, once OP has run (its
