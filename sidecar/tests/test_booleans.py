@@ -1,8 +1,13 @@
-"""The shared boolean calls: a split that does not keep its faces' area is refused."""
+"""The shared boolean calls: a split that does not keep its faces' area is refused; merging a patch's faces
+leaves the faces it was given as they were."""
 
 import pytest
+from OCP.BRep import BRep_Builder
+from OCP.TopAbs import TopAbs_FACE, TopAbs_WIRE
 
-from midsurf_sidecar.geom.booleans import check_area_kept, general_fuse
+from midsurf_sidecar.geom import booleans
+from midsurf_sidecar.geom.booleans import check_area_kept, general_fuse, unify
+from midsurf_sidecar.geom.topology import subshapes, surface_props
 from midsurf_sidecar.protocol.errors import KernelError
 from patch_shapes import horizontal, rectangle, vertical
 
@@ -64,3 +69,49 @@ def test_the_fuse_runs_on_one_thread_when_asked(monkeypatch):
     serial = general_fuse(faces, 1e-6)
     assert not serial.RunParallel()
     assert all(serial.Modified(face).Size() == 2 for face in faces)
+
+
+class Merger:
+    """Stands in for ShapeUpgrade_UnifySameDomain: keeps the shape it is given, answers `result` (or that shape)."""
+
+    given = []
+
+    def __init__(self, shape, *flags, result=None):
+        Merger.given.append(shape)
+        self.result = result if result is not None else shape
+
+    def SetLinearTolerance(self, value):
+        pass
+
+    def SetAngularTolerance(self, value):
+        pass
+
+    def Build(self):
+        pass
+
+    def Shape(self):
+        return self.result
+
+
+def test_merging_works_on_a_copy_so_the_faces_given_are_never_changed(monkeypatch):
+    # UnifySameDomain edits the shape it is given in place (it re-fits pcurves of edges on periodic surfaces).
+    # A face the fuse leaves whole is the very face of the stitched patches: edited, it broke every later fuse.
+    Merger.given = []
+    monkeypatch.setattr(booleans, "ShapeUpgrade_UnifySameDomain", Merger)
+    apart = rectangle((100, 0, 0), (110, 0, 0), (110, 10, 0), (100, 10, 0))  # touches nothing: not split
+    faces = [horizontal(), apart]
+    unify(faces, 1e-6)
+    (given,) = Merger.given
+    assert not any(f.IsSame(g) for f in faces for g in subshapes(given, TopAbs_FACE))
+
+
+def test_a_merge_that_breaks_a_face_is_dropped_for_the_faces_only_joined(monkeypatch):
+    # Its wire turned inside out: the merged face's area reads negative.
+    plate = horizontal()
+    inverted = plate.EmptyCopied()
+    BRep_Builder().Add(inverted, subshapes(plate, TopAbs_WIRE)[0].Reversed())
+    assert surface_props(inverted).Mass() < 0
+    monkeypatch.setattr(booleans, "ShapeUpgrade_UnifySameDomain", lambda shape, *flags: Merger(shape, result=inverted))
+    faces = [horizontal(), vertical(30)]
+    joined = subshapes(unify(faces, 1e-6), TopAbs_FACE)
+    assert len(joined) == 4 and all(surface_props(f).Mass() > 0 for f in joined)

@@ -5,6 +5,8 @@ surface."""
 import os
 
 from OCP.BOPAlgo import BOPAlgo_Builder
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
+from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepAlgoAPI import BRepAlgoAPI_BuilderAlgo, BRepAlgoAPI_Common, BRepAlgoAPI_Splitter
 from OCP.collections import List_TopoDS_Shape
 from OCP.Message import Message_Fail
@@ -99,12 +101,21 @@ def within(edge: TopoDS_Shape, face: TopoDS_Shape) -> list[TopoDS_Shape]:
 def unify(faces: list[TopoDS_Shape], fuzzy: float) -> TopoDS_Shape:
     """One patch's faces (its kept pieces, the strips grown from its edges and the corners between them) joined
     where they touch and merged where they lie on one surface, so a strip is not left as a sliver face of its
-    own."""
-    merger = ShapeUpgrade_UnifySameDomain(general_fuse(faces, fuzzy).Shape(), True, True, False)
+    own. When a merged face comes out broken (BRepCheck fails, or its wires turn inside out and its area
+    negative: UnifySameDomain at times joins a curved patch's pieces so), the faces are only joined: a broken
+    face makes every later fuse of the part fail, losing all the joints of a stitching pass."""
+    joined = general_fuse(faces, fuzzy).Shape()
+    merger = ShapeUpgrade_UnifySameDomain(BRepBuilderAPI_Copy(joined, False, False).Shape(), True, True, False)
     merger.SetLinearTolerance(max(fuzzy, CONFUSION))
     merger.SetAngularTolerance(SAME_DOMAIN_ANGLE)
     merger.Build()
-    return merger.Shape()
+    merged = merger.Shape()
+    return merged if all(_sound(face) for face in subshapes(merged, TopAbs_FACE)) else joined
+
+
+def _sound(face: TopoDS_Shape) -> bool:
+    """A face BRepCheck passes, with a positive area."""
+    return surface_props(face).Mass() > 0.0 and BRepCheck_Analyzer(face).IsValid()
 
 
 def _alerts(builder: BOPAlgo_Builder) -> str:
