@@ -49,7 +49,13 @@ pub enum FaceRole {
     /// A side face joining the two skins of group `group` (it becomes an edge of the mid-surface).
     Thickness { group: usize },
     /// Joins walls of different groups (a fillet, an unpaired bend): bridged when stitching.
-    Connecting { groups: Vec<usize> },
+    /// `near_miss`: its closest candidate partner and why it failed (a connecting face as large as a wall
+    /// with a near miss is a wall the tests missed).
+    Connecting {
+        groups: Vec<usize>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        near_miss: Option<NearMiss>,
+    },
     /// Left out of pairing on purpose (a suppressed small feature).
     Suppressed,
     /// Nothing to pair with; `near_miss` is the candidate that came closest and why it failed.
@@ -157,7 +163,7 @@ pub fn group_and_classify(
             touching.sort_unstable();
             touching.dedup();
             if !touching.is_empty() {
-                return FaceRole::Connecting { groups: touching };
+                return FaceRole::Connecting { groups: touching, near_miss: near[f].clone() };
             }
             FaceRole::Unpaired { near_miss: near[f].clone() }
         })

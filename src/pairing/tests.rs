@@ -327,7 +327,12 @@ fn connecting_face_between_two_walls() {
     let g = synthetic::graph(faces, &[(1, 4, Convexity::Smooth), (3, 4, Convexity::Smooth)]);
     let pairing = detect(&g, &tol(), &[true; 5]);
     assert_eq!(pairing.groups.len(), 2);
-    assert_eq!(pairing.roles[4], FaceRole::Connecting { groups: vec![0, 1] });
+    assert!(matches!(&pairing.roles[4], FaceRole::Connecting { groups, .. } if groups == &[0, 1]));
+    // Why it is no skin (`pairs --json` says so): the slabs' bottoms below it lie beside it, not under it.
+    match &pairing.roles[4] {
+        FaceRole::Connecting { near_miss: Some(NearMiss { rejection: Rejection::Overlap { .. }, .. }), .. } => {}
+        other => panic!("expected a near miss on the overlap test, got {other:?}"),
+    }
 }
 
 #[test]
