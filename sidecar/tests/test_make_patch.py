@@ -395,8 +395,8 @@ def test_clip_keeps_a_wide_band_between_covered_pieces_where_the_wall_runs_on_un
     bottoms = [f["id"] for f in g["faces"] if f["normal"][2] < -0.99 and f["centroid"][2] > 1.0]
     assert len(bottoms) == 2
 
-    def area(**wall):
-        clip = {"partners": [bottoms], "fuzzy": 1e-6, "narrow": 3.0, "narrow_end": 3.0, **wall}
+    def area(narrow=3.0, **wall):
+        clip = {"partners": [bottoms], "fuzzy": 1e-6, "narrow": narrow, "narrow_end": narrow, **wall}
         ok = client.ok("make_patch", handle=handle, faces=[top["id"]], offset=-1.0, clip=clip)
         return sum(f["area"] for f in ok["faces"])
 
@@ -405,6 +405,8 @@ def test_clip_keeps_a_wide_band_between_covered_pieces_where_the_wall_runs_on_un
     assert area() == pytest.approx(96.0 * 60.0)
     # Where mid-wall lies outside the material (here: told it is 2 above the patch, over the plate), the band goes.
     assert area(thickness=2.0, to_mid=2.0, wall_max=3.0) == pytest.approx(96.0 * 60.0)
+    # A strict clip (narrow 0: a minor thickness level) keeps only what lies over the partners, wall or not.
+    assert area(narrow=0.0, thickness=2.0, to_mid=0.0, wall_max=3.0) == pytest.approx(96.0 * 60.0)
 
 
 def slot_end() -> "TopoDS_Shape":

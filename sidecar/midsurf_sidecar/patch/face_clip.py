@@ -107,7 +107,8 @@ def clip_to_partners(
         if elsewhere[i]:
             continue
         if _width(piece, areas[i]) > (narrow if between else narrow_end):
-            if not (between and wall is not None and wall.runs_through(piece, narrow)):
+            # A strict clip (narrow 0: a minor thickness level) keeps only what lies over the partners.
+            if not (between and narrow > 0.0 and wall is not None and wall.runs_through(piece, narrow)):
                 continue
         if not between and wall is not None and _reach(piece, cover) > TONGUE_REACH * narrow_end:
             if wall.tongue(piece, cover, narrow_end):
