@@ -149,6 +149,9 @@ impl Rejection {
             Rejection::SameSense => 3,
             Rejection::NotFacing => 4,
             Rejection::Distance { .. } => 5,
+            // Faces that overlap nowhere (a face beside this one, not across it) say less than a partner across
+            // the wall that failed on its distance: as little as faces that do not enclose material.
+            Rejection::Overlap { share, .. } if *share <= 0.0 => 4,
             Rejection::Overlap { .. } => 6,
             Rejection::Spread { .. } => 7,
             Rejection::Stub { .. } | Rejection::MinorLevel { .. } | Rejection::Lip { .. } => 8,

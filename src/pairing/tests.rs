@@ -585,3 +585,15 @@ fn a_lip_under_a_plate_end_is_no_wall_a_chamfered_corner_is() {
         assert_eq!(paired, expected, "plate at {tilt} degrees");
     }
 }
+
+#[test]
+fn a_near_miss_across_the_wall_says_more_than_a_face_beside_it() {
+    // The near miss kept per face is the candidate that passed most tests. A face beside this one (its box within
+    // reach, but lying over none of it: overlap 0) says less than a partner across the wall that failed on its
+    // distance, and no more than faces that do not enclose material.
+    let beside = Rejection::Overlap { share: 0.0, limit: 0.1 };
+    let across = Rejection::Distance { distance: 4.0, limit: 3.0 };
+    let partly = Rejection::Overlap { share: 0.05, limit: 0.1 };
+    assert!(beside.stage() < across.stage() && across.stage() < partly.stage());
+    assert_eq!(beside.stage(), Rejection::NotFacing.stage());
+}
