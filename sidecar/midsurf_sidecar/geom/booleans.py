@@ -5,9 +5,9 @@ surface."""
 import os
 
 from OCP.BOPAlgo import BOPAlgo_Builder
+from OCP.BRepAlgoAPI import BRepAlgoAPI_BuilderAlgo, BRepAlgoAPI_Common, BRepAlgoAPI_Splitter
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.BRepAlgoAPI import BRepAlgoAPI_BuilderAlgo, BRepAlgoAPI_Common, BRepAlgoAPI_Splitter
 from OCP.collections import List_TopoDS_Shape
 from OCP.Message import Message_Fail
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
@@ -101,9 +101,11 @@ def within(edge: TopoDS_Shape, face: TopoDS_Shape) -> list[TopoDS_Shape]:
 def unify(faces: list[TopoDS_Shape], fuzzy: float) -> TopoDS_Shape:
     """One patch's faces (its kept pieces, the strips grown from its edges and the corners between them) joined
     where they touch and merged where they lie on one surface, so a strip is not left as a sliver face of its
-    own. When a merged face comes out broken (BRepCheck fails, or its wires turn inside out and its area
-    negative: UnifySameDomain at times joins a curved patch's pieces so), the faces are only joined: a broken
-    face makes every later fuse of the part fail, losing all the joints of a stitching pass."""
+    own. UnifySameDomain edits the shape it is given (it re-fits pcurves on periodic surfaces), and the joined
+    faces include the very faces of the stitched patches that touch nothing (the fuse keeps those as they are):
+    it gets a copy. When a merged face comes out broken (BRepCheck fails, or its wires turn inside out and its
+    area negative), the faces are only joined: a broken face makes every later fuse of the part fail, losing all
+    the joints of a stitching pass."""
     joined = general_fuse(faces, fuzzy).Shape()
     merger = ShapeUpgrade_UnifySameDomain(BRepBuilderAPI_Copy(joined, False, False).Shape(), True, True, False)
     merger.SetLinearTolerance(max(fuzzy, CONFUSION))
