@@ -24,8 +24,8 @@ from io import BytesIO
 from pathlib import Path
 
 from build123d import (
-    Axis, Compound, Edge, Face, Location, Plane, RectangleRounded, Shape, Solid, Vector, Wire, export_step, extrude,
-    thicken,
+    Axis, Compound, Edge, Face, Location, Plane, Polyline, RectangleRounded, Shape, Solid, Vector, Wire, export_step,
+    extrude, make_face, thicken,
 )
 from OCP.BOPAlgo import BOPAlgo_Builder
 from OCP.BRepCheck import BRepCheck_Analyzer
@@ -662,6 +662,28 @@ def plate_land() -> Fixture:
     return Fixture(single_solid(part.clean()), 100 * 60 * 2 + 4 * 1.5 * 60, 10)
 
 
+def plate_honeycomb() -> Fixture:
+    """A plate 100 x 80 x 3 perforated by a honeycomb of 30 hexagonal holes (6 across flats, in 6 columns of 5,
+    centres 7 apart): webs 1 wide between neighbouring holes, meeting three by three at 120 degrees (a fan
+    grille, a vent). The class of a perforated wall whose webs are narrower than the wall is thick: facing hole
+    walls enclose 1 of material, yet each runs from the plate's top to its bottom, so that material is the
+    plate's own. Mid-surface: the plate at z = 1.5 with the 30 holes, one face.
+    Faces: 6 + 30 * 6. Volume: 100 * 80 * 3 less 30 hexagons of sqrt(3) / 2 * 6^2, 3 deep.
+    """
+    part = box(0, 0, 0, 100, 80, 3)
+    circumradius = 3 / math.cos(math.pi / 6)
+    pitch = 7.0
+    for column in range(6):
+        for row in range(5):
+            x = 30 + column * pitch * math.sqrt(3) / 2
+            y = 25 + row * pitch + (pitch / 2 if column % 2 else 0)
+            corners = [(x + circumradius * math.cos(k * math.pi / 3), y + circumradius * math.sin(k * math.pi / 3), -1)
+                       for k in range(6)]
+            part = part - extrude(make_face(Polyline(*corners, close=True)), 5)
+    hexagon = math.sqrt(3) / 2 * 6**2
+    return Fixture(single_solid(part), 100 * 80 * 3 - 30 * hexagon * 3, 6 + 30 * 6)
+
+
 def frustum(radius_bottom: float, radius_top: float, height: float) -> float:
     return math.pi * height / 3 * (radius_bottom**2 + radius_bottom * radius_top + radius_top**2)
 
@@ -762,6 +784,7 @@ PARTS: list[Callable[[], Fixture]] = [
     channel_low_end,
     channel_thick_flanges,
     plate_land,
+    plate_honeycomb,
     t_rib_partitioned,
     l_bracket_partitioned,
     t_rib_touching,

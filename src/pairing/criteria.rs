@@ -191,6 +191,36 @@ pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same
     })
 }
 
+/// Both faces of `pair` reach from one skin of another pair to its other skin (each meets both skins, through
+/// a suppressed blend at most), and that pair overlaps over more area: the material between the two faces is
+/// a web of a perforated wall (between two holes or slots narrower apart than the wall is thick), which the
+/// wall's patch spans already. A web's own patch would stand across the wall's, a strip as high as the wall is
+/// thick, joined to nothing at its ends. A lone bar whose sides pair is no web: its faces across are narrower
+/// than its sides (`stub_sides`), and its sides overlap over more area.
+pub fn web_of_sheet(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], pairable: &[bool]) -> Option<Rejection> {
+    let [a, b] = pair.faces.map(|f| reach(graph, f, pairable));
+    a.iter().filter(|&&s| b.binary_search(&s).is_ok()).find_map(|&s| {
+        pairs_of[s].iter().find_map(|sheet| {
+            let other = sheet.other(s);
+            let spans = a.binary_search(&other).is_ok() && b.binary_search(&other).is_ok();
+            let wider = sheet.overlap_area > pair.overlap_area && !sheet.faces.iter().any(|f| pair.faces.contains(f));
+            (spans && wider).then_some(Rejection::Web { thickness: pair.thickness.mean, sheet: sheet.thickness.mean })
+        })
+    })
+}
+
+/// The faces `face` meets, directly or across one face left out of pairing (a suppressed round or chamfer),
+/// sorted.
+fn reach(graph: &FaceGraph, face: FaceId, pairable: &[bool]) -> Vec<FaceId> {
+    let mut out = graph.neighbours(face);
+    let beyond: Vec<FaceId> =
+        out.iter().filter(|&&g| !pairable[g]).flat_map(|&g| graph.neighbours(g)).filter(|&g| g != face).collect();
+    out.extend(beyond);
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
 /// A wall skin and a face square to it within this cosine (about 3 degrees) meet as a ledge on the wall.
 const SQUARE_COS: f64 = 0.05;
 

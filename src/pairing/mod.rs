@@ -138,6 +138,12 @@ pub enum Rejection {
         width: f64,
         thickness: f64,
     },
+    /// Both faces run from one skin of a wider wall to its other skin: the material between them is a web of
+    /// that wall (between two holes of a perforated sheet), which the wall's own patch already spans.
+    Web {
+        thickness: f64,
+        sheet: f64,
+    },
 }
 
 impl Rejection {
@@ -154,7 +160,7 @@ impl Rejection {
             Rejection::Overlap { share, .. } if *share <= 0.0 => 4,
             Rejection::Overlap { .. } => 6,
             Rejection::Spread { .. } => 7,
-            Rejection::Stub { .. } | Rejection::MinorLevel { .. } | Rejection::Lip { .. } => 8,
+            Rejection::Stub { .. } | Rejection::MinorLevel { .. } | Rejection::Lip { .. } | Rejection::Web { .. } => 8,
         }
     }
 
@@ -191,6 +197,9 @@ impl Rejection {
             }
             Rejection::Lip { width, thickness } => {
                 format!("a face {width:.4} wide, {thickness:.4} from a partner pairing with nothing else: a lip, not a wall")
+            }
+            Rejection::Web { thickness, sheet } => {
+                format!("faces {thickness:.4} apart spanning a wall {sheet:.4} thick: a web of that wall, not a wall")
             }
         }
     }
@@ -296,6 +305,22 @@ pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool], tol: &T
         None => true,
         Some((face, rejection)) => {
             near[face] = Some(NearMiss { candidate: pair.other(face), rejection });
+            false
+        }
+    });
+    let mut pairs_of: Vec<Vec<&Pair>> = vec![Vec::new(); graph.faces.len()];
+    for pair in &pairs {
+        pair.faces.iter().for_each(|&f| pairs_of[f].push(pair));
+    }
+    let webs: Vec<Option<Rejection>> =
+        pairs.iter().map(|pair| criteria::web_of_sheet(graph, pair, &pairs_of, pairable)).collect();
+    let mut webs = webs.into_iter();
+    pairs.retain(|pair| match webs.next().flatten() {
+        None => true,
+        Some(rejection) => {
+            for me in pair.faces {
+                near[me] = Some(NearMiss { candidate: pair.other(me), rejection: rejection.clone() });
+            }
             false
         }
     });

@@ -597,3 +597,33 @@ fn a_near_miss_across_the_wall_says_more_than_a_face_beside_it() {
     assert!(beside.stage() < across.stage() && across.stage() < partly.stage());
     assert_eq!(beside.stage(), Rejection::NotFacing.stage());
 }
+
+#[test]
+fn a_web_between_two_holes_of_a_plate_is_the_plate_a_rib_on_it_is_a_wall() {
+    // The 3.0 slab (bottom 0, top 1) with two faces 1.0 apart facing away from each other, 20 long: through
+    // the plate (z 0..3, both skins meet both faces: a web between two slots) they are the plate's own; standing
+    // on its top (z 3..6, meeting the top only: a rib) they are a wall.
+    let web = |z: f64| {
+        vec![
+            rect(DVec3::new(20.0, 10.0, z), DVec3::Z * 3.0, DVec3::Y * 20.0, -DVec3::X),
+            rect(DVec3::new(21.0, 10.0, z), DVec3::Y * 20.0, DVec3::Z * 3.0, DVec3::X),
+        ]
+    };
+    let through = [
+        (0, 2, Convexity::Convex, 20.0),
+        (0, 3, Convexity::Convex, 20.0),
+        (1, 2, Convexity::Convex, 20.0),
+        (1, 3, Convexity::Convex, 20.0),
+    ];
+    let mut faces = slab_faces(3.0);
+    faces.extend(web(0.0));
+    let pairing = detect(&graph_with_lengths(faces, &through), &tol(), &[true; 4]);
+    assert_eq!(pairing.pairs.iter().map(|p| p.faces).collect::<Vec<_>>(), vec![[0, 1]]);
+    assert_eq!(pairing.roles[2], FaceRole::Thickness { group: 0 });
+    assert_eq!(pairing.roles[3], FaceRole::Thickness { group: 0 });
+    let rib = [(1, 2, Convexity::Concave, 20.0), (1, 3, Convexity::Concave, 20.0)];
+    let mut faces = slab_faces(3.0);
+    faces.extend(web(3.0));
+    let pairing = detect(&graph_with_lengths(faces, &rib), &tol(), &[true; 4]);
+    assert_eq!(pairing.pairs.iter().map(|p| p.faces).collect::<Vec<_>>(), vec![[0, 1], [2, 3]]);
+}
