@@ -1,10 +1,16 @@
 """load_step: solids as handles, and a clear error code for every way a file can be wrong."""
 
 import pytest
+from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Builder
+from OCP.BRepBndLib import BRepBndLib
+from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
+from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Compound
+
+from midsurf_sidecar.load.step_reader import load_step
 
 from shapes import box, write_step
 
@@ -35,6 +41,36 @@ def test_several_solids_in_topexp_order(client, tmp_path):
     solids = client.ok("load_step", path=str(write_step(compound, tmp_path / "two.step")))["solids"]
     assert [s["volume"] for s in solids] == pytest.approx([1.0, 8.0])
     assert len({s["handle"] for s in solids}) == 2
+
+
+def test_solids_placed_by_a_location_come_with_their_placement_in_their_geometry(client, tmp_path):
+    # An assembly places one part twice, as one shape under two locations (rotated and moved): each solid loaded
+    # has no location left, and its geometry lies where the file placed it.
+    placed = []
+    for angle, dx in [(0.7, 0.0), (1.9, 40.0)]:
+        move = gp_Trsf()
+        move.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 1, 0)), angle)
+        shift = gp_Trsf()
+        shift.SetTranslation(gp_Vec(dx, 5, 7))
+        placed.append(box(10, 20, 30).Located(TopLoc_Location(shift * move)))
+    compound = TopoDS_Compound()
+    builder = BRep_Builder()
+    builder.MakeCompound(compound)
+    for solid in placed:
+        builder.Add(compound, solid)
+    path = write_step(compound, tmp_path / "instances.step")
+    loaded = load_step(str(path))
+    assert len(loaded) == 2
+    for got, want in zip(loaded, placed):
+        assert got.Location().IsIdentity()
+        assert bounds(got) == pytest.approx(bounds(want), abs=1e-6)
+
+
+def bounds(shape):
+    box_ = Bnd_Box()
+    BRepBndLib.AddOptimal_s(shape, box_, False, False)
+    return [box_.CornerMin().X(), box_.CornerMin().Y(), box_.CornerMin().Z(),
+            box_.CornerMax().X(), box_.CornerMax().Y(), box_.CornerMax().Z()]
 
 
 def test_missing_file(client, tmp_path):

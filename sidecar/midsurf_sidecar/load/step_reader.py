@@ -5,9 +5,11 @@ import os
 import re
 
 from OCP.BRep import BRep_Tool
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_SOLID, TopAbs_VERTEX
+from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Shape
 
 from ..geom.topology import indexed_map
@@ -51,7 +53,18 @@ def load_step_checked(path: str) -> tuple[list[TopoDS_Shape], list[dict]]:
     solids = indexed_map(shape, TopAbs_SOLID)
     if solids.Size() == 0:
         raise OpError(f"has {_content_summary(shape)}, no solid{cause}", "no_solid")
-    return [solids.FindKey(i) for i in range(1, solids.Size() + 1)], problems
+    return [_placed(solids.FindKey(i)) for i in range(1, solids.Size() + 1)], problems
+
+
+def _placed(solid: TopoDS_Shape) -> TopoDS_Shape:
+    """The solid with its placement in the file moved into its geometry. An assembly places each part by a
+    location on its solid, which every face made from it inherits, and the STEP writer's non-manifold mode does
+    not always write such faces back where they were: measured, a perforated plate's mid-face (82 wires) placed
+    rotated in an assembly read back with no area, failing BRepCheck; the same face with the placement in its
+    geometry reads back whole. A solid placed where it was defined is returned as is."""
+    if solid.Location().IsIdentity():
+        return solid
+    return BRepBuilderAPI_Transform(solid.Located(TopLoc_Location()), solid.Location().Transformation(), True).Shape()
 
 
 # What the reader's checks say per entity, cut to this many entities (a file broken throughout says so in a
