@@ -15,6 +15,7 @@ from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL
 from OCP.TopExp import TopExp
 
 from midsurf_sidecar.geom.topology import indexed_map
+from midsurf_sidecar.write import shells
 from patch_shapes import horizontal, put_patches, rectangle, vertical
 
 
@@ -281,3 +282,48 @@ def test_a_merge_set_going_all_the_way_round_a_tube_stays_as_its_pieces(client):
     shells = client.session.store.get(ok["handle"])
     # Free edges only at the two rims (each a half circle per half); both sides along the axis are shared.
     assert faces_per_edge(shells) == [1, 1, 1, 1, 2, 2]
+
+
+class RecordingMerger:
+    """Stands in for ShapeUpgrade_UnifySameDomain: records the shape it is given, then fails to build."""
+
+    given = []
+
+    def __init__(self, shape, *flags):
+        RecordingMerger.given.append(shape)
+
+    def SetLinearTolerance(self, value):
+        pass
+
+    def SetAngularTolerance(self, value):
+        pass
+
+    def KeepShapes(self, shapes):
+        pass
+
+    def Build(self):
+        raise RuntimeError("Standard_Failure")
+
+
+def test_the_merge_works_on_a_copy_so_a_merge_given_up_leaves_the_faces_as_they_were(monkeypatch):
+    # UnifySameDomain edits the shape it is given in place (it re-fits pcurves on periodic surfaces): given the
+    # shells' own faces, a merge it then gives up would still leave them changed, and written.
+    RecordingMerger.given = []
+    monkeypatch.setattr(shells, "ShapeUpgrade_UnifySameDomain", RecordingMerger)
+    left = rectangle((0, 0, 1), (10, 0, 1), (10, 40, 1), (0, 40, 1))
+    right = rectangle((10, 0, 1), (20, 0, 1), (20, 40, 1), (10, 40, 1))
+    pieces = {0: [left], 1: [right]}
+    shells._merge(pieces, [[0, 1]], 1e-6)
+    (given,) = RecordingMerger.given
+    assert pieces == {0: [left], 1: [right]}
+    assert not any(f.IsSame(g) for f in (left, right) for g in indexed_map(given, TopAbs_FACE))
+
+
+def test_the_faces_a_merge_hands_back_keep_their_orientation():
+    # A reversed piece (a patch whose normal points the other way) stays reversed through the merge's copy.
+    left = rectangle((0, 0, 1), (10, 0, 1), (10, 40, 1), (0, 40, 1))
+    right = rectangle((10, 0, 1), (20, 0, 1), (20, 40, 1), (10, 40, 1))
+    apart = rectangle((50, 0, 1), (60, 0, 1), (60, 40, 1), (50, 40, 1)).Reversed()
+    pieces = {0: [left], 1: [right], 2: [apart]}
+    shells._merge(pieces, [[0, 1]], 1e-6)
+    assert len(pieces[2]) == 1 and pieces[2][0].Orientation() == apart.Orientation()

@@ -5,13 +5,13 @@ from collections import deque
 from typing import Any
 
 from OCP.BRep import BRep_Builder, BRep_Tool
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy, BRepBuilderAPI_MakeEdge
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepTools import BRepTools
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape, TopoDS_Shell
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Iterator, TopoDS_Shape, TopoDS_Shell
 from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
@@ -97,12 +97,25 @@ def _merge(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy
     groups = [g for g in groups if all(len(pieces[i]) == 1 for i in g)]
     if not groups:
         return
-    inner = _group_edges(pieces, groups)
     builder, compound, keep = BRep_Builder(), TopoDS_Compound(), ShapeMap()
     builder.MakeCompound(compound)
     for faces in pieces.values():
         for face in faces:
             builder.Add(compound, face)
+    # UnifySameDomain edits the shape it is given (it re-fits pcurves on periodic surfaces): it works on a copy,
+    # so that a merge given up leaves the pieces as they were.
+    compound = BRepBuilderAPI_Copy(compound, False, False).Shape()
+    # The copy's faces in the order added, each oriented as its original (ModifiedShape would give it forward).
+    copies = TopoDS_Iterator(compound)
+    given, pieces = pieces, {}
+    for i, faces in given.items():
+        pieces[i] = []
+        for _ in faces:
+            pieces[i].append(copies.Value())
+            copies.Next()
+    inner = _group_edges(pieces, groups)
+    for faces in pieces.values():
+        for face in faces:
             explorer = TopExp_Explorer(face, TopAbs_EDGE)
             while explorer.More():
                 if not inner.Contains(explorer.Current()):
@@ -141,9 +154,9 @@ def _merge(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy
     # closed on itself again, its seam a free edge: those groups stay as pieces, the others merge.
     closing = [g for g in groups if closing_isolines([f for f in merged[g[0]] if not originals.Contains(f)])]
     if closing:
-        _merge(pieces, [g for g in groups if g not in closing], fuzzy)
+        _merge(given, [g for g in groups if g not in closing], fuzzy)
         return
-    pieces.update(merged)
+    given.update(merged)
 
 
 def _group_edges(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]]) -> ShapeMap:
