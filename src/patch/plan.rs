@@ -88,13 +88,11 @@ fn pairs_per_face<'a>(side: &[FaceId], pairs: &[usize], pairing: &'a Pairing) ->
     out
 }
 
-/// Every face of the side sits at one level from its partners (a thickness step lies between faces). A level is
-/// a pair's mean: a tapered or freeform pair varies across its overlap, which is no step.
+/// Every face of the side sits at one thickness from its partners (a thickness step lies between faces).
 fn uniform(per_face: &[(FaceId, Vec<&Pair>)]) -> bool {
     per_face.iter().all(|(_, pairs)| {
-        let means = pairs.iter().map(|p| p.thickness.mean);
-        let (min, max) = means.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| (lo.min(t), hi.max(t)));
-        max - min <= SAME_THICKNESS * 0.5 * (min + max)
+        let t = combined(pairs);
+        t.max - t.min <= SAME_THICKNESS * t.mean
     })
 }
 
