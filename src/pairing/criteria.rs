@@ -211,7 +211,7 @@ pub fn web_of_sheet(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], pai
 
 /// The faces `face` meets, directly or across one face left out of pairing (a suppressed round or chamfer),
 /// sorted.
-fn reach(graph: &FaceGraph, face: FaceId, pairable: &[bool]) -> Vec<FaceId> {
+pub(super) fn reach(graph: &FaceGraph, face: FaceId, pairable: &[bool]) -> Vec<FaceId> {
     let mut out = graph.neighbours(face);
     let beyond: Vec<FaceId> =
         out.iter().filter(|&&g| !pairable[g]).flat_map(|&g| graph.neighbours(g)).filter(|&g| g != face).collect();

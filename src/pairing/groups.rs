@@ -140,18 +140,9 @@ pub fn group_and_classify(
             if let Some(group) = group_of[f] {
                 return FaceRole::Pair { group, side: side_of[f] };
             }
-            let mut neighbours = graph.neighbours(f);
             // A suppressed round between this face and a skin (a rib top with rounded edges) does not hide
             // the skin: the face still joins the wall's two sides.
-            let beyond: Vec<FaceId> = neighbours
-                .iter()
-                .filter(|&&a| !pairable[a])
-                .flat_map(|&a| graph.neighbours(a))
-                .filter(|&b| b != f)
-                .collect();
-            neighbours.extend(beyond);
-            neighbours.sort_unstable();
-            neighbours.dedup();
+            let neighbours = super::criteria::reach(graph, f, pairable);
             let joined = neighbours.iter().find_map(|&a| {
                 let ga = group_of[a]?;
                 neighbours.iter().any(|&b| group_of[b] == Some(ga) && side_of[b] != side_of[a]).then_some(ga)

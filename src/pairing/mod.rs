@@ -285,47 +285,49 @@ pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool], tol: &T
             skins[face] = true;
         }
     }
-    pairs.retain(|pair| match criteria::stub_sides(graph, pair, &skins) {
-        None => true,
-        Some(rejection) => {
-            for me in pair.faces {
-                near[me] = Some(NearMiss { candidate: pair.other(me), rejection: rejection.clone() });
-            }
-            false
-        }
-    });
-    let mut pairs_of: Vec<Vec<&Pair>> = vec![Vec::new(); graph.faces.len()];
-    for pair in &pairs {
-        pair.faces.iter().for_each(|&f| pairs_of[f].push(pair));
-    }
-    let minor: Vec<Option<(FaceId, Rejection)>> =
-        pairs.iter().map(|pair| criteria::minor_level(graph, pair, &pairs_of, tol.point)).collect();
-    let mut minor = minor.into_iter();
-    pairs.retain(|pair| match minor.next().flatten() {
-        None => true,
-        Some((face, rejection)) => {
-            near[face] = Some(NearMiss { candidate: pair.other(face), rejection });
-            false
-        }
-    });
-    let mut pairs_of: Vec<Vec<&Pair>> = vec![Vec::new(); graph.faces.len()];
-    for pair in &pairs {
-        pair.faces.iter().for_each(|&f| pairs_of[f].push(pair));
-    }
-    let webs: Vec<Option<Rejection>> =
-        pairs.iter().map(|pair| criteria::web_of_sheet(graph, pair, &pairs_of, pairable)).collect();
-    let mut webs = webs.into_iter();
-    pairs.retain(|pair| match webs.next().flatten() {
-        None => true,
-        Some(rejection) => {
-            for me in pair.faces {
-                near[me] = Some(NearMiss { candidate: pair.other(me), rejection: rejection.clone() });
-            }
-            false
-        }
-    });
+    let stubs = pairs.iter().map(|p| criteria::stub_sides(graph, p, &skins).map(|r| (p.faces.to_vec(), r))).collect();
+    drop_rejected(&mut pairs, &mut near, stubs);
+    let pairs_of = pairs_by_face(graph.faces.len(), &pairs);
+    let minor = pairs
+        .iter()
+        .map(|p| criteria::minor_level(graph, p, &pairs_of, tol.point).map(|(f, r)| (vec![f], r)))
+        .collect();
+    drop_rejected(&mut pairs, &mut near, minor);
+    let pairs_of = pairs_by_face(graph.faces.len(), &pairs);
+    let webs = pairs
+        .iter()
+        .map(|p| criteria::web_of_sheet(graph, p, &pairs_of, pairable).map(|r| (p.faces.to_vec(), r)))
+        .collect();
+    drop_rejected(&mut pairs, &mut near, webs);
     let (groups, roles) = groups::group_and_classify(graph, &pairs, &near, pairable);
     Pairing { pairs, groups, roles }
+}
+
+/// The pairs of each face, indexed by face id.
+fn pairs_by_face(faces: usize, pairs: &[Pair]) -> Vec<Vec<&Pair>> {
+    let mut out: Vec<Vec<&Pair>> = vec![Vec::new(); faces];
+    for pair in pairs {
+        pair.faces.iter().for_each(|&f| out[f].push(pair));
+    }
+    out
+}
+
+/// Drops the pairs with a verdict (one per pair, in order): the faces it names get it as their near miss.
+fn drop_rejected(
+    pairs: &mut Vec<Pair>,
+    near: &mut [Option<NearMiss>],
+    verdicts: Vec<Option<(Vec<FaceId>, Rejection)>>,
+) {
+    let mut verdicts = verdicts.into_iter();
+    pairs.retain(|pair| match verdicts.next().flatten() {
+        None => true,
+        Some((faces, rejection)) => {
+            for me in faces {
+                near[me] = Some(NearMiss { candidate: pair.other(me), rejection: rejection.clone() });
+            }
+            false
+        }
+    });
 }
 
 #[cfg(test)]
