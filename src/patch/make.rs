@@ -101,6 +101,15 @@ fn plan_warning(solid: usize, note: PlanNote) -> Warning {
             solid: Some(solid),
             faces,
         },
+        PlanNote::ThicknessVaries { group, faces, thickness: t } => Warning {
+            code: "thickness_varies",
+            message: format!(
+                "group {group}: the wall's thickness varies within its pairs ({:.3}..{:.3}); the patch is offset at the mean {:.3}",
+                t.min, t.max, t.mean
+            ),
+            solid: Some(solid),
+            faces,
+        },
         PlanNote::PartialOverlap { group, faces, coverage } => Warning {
             code: "partial_overlap",
             message: format!(

@@ -69,6 +69,28 @@ fn a_draft_patch_on_a_skin_lies_on_that_face_plane() {
 }
 
 #[test]
+fn a_tapered_wall_is_noted_as_varying_not_as_a_step() {
+    // A plate whose one pair was measured 1.8 to 2.2 thick (a taper) is noted as varying; bottoms at two
+    // heights under tops at two heights (neither side at one thickness) are a step between pairs.
+    let g = synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0));
+    let mut pairing = detect(&g, &Tolerances::new(120.0, 3.0, 0.05), &[true; 6]);
+    assert_eq!(pairing.pairs.len(), 1);
+    pairing.pairs[0].thickness = Thickness { mean: 2.0, min: 1.8, max: 2.2 };
+    let (_, notes) = plan_patches(&g, &pairing, Position::Mid, &[]);
+    assert!(matches!(notes[..], [PlanNote::ThicknessVaries { .. }]), "{notes:?}");
+    let faces = vec![
+        synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 40.0, -DVec3::Z),
+        synthetic::rect(DVec3::new(-35.0, 0.0, -1.0), DVec3::Y * 10.0, DVec3::X * 35.0, -DVec3::Z),
+        synthetic::rect(DVec3::new(-30.0, 0.0, 2.0), DVec3::X * 55.0, DVec3::Y * 10.0, DVec3::Z),
+        synthetic::rect(DVec3::new(25.0, 0.0, 3.0), DVec3::X * 15.0, DVec3::Y * 10.0, DVec3::Z),
+    ];
+    let g = synthetic::graph(faces, &[]);
+    let pairing = detect(&g, &Tolerances::new(60.0, 4.0, 0.05), &[true; 4]);
+    let (_, notes) = plan_patches(&g, &pairing, Position::Mid, &[]);
+    assert!(!notes.is_empty() && notes.iter().all(|n| matches!(n, PlanNote::ThicknessStep { .. })), "{notes:?}");
+}
+
+#[test]
 fn a_thickness_step_gives_one_patch_per_level() {
     // One bottom under two tops at heights 2 and 3: two patches from the bottom would be wrong, so the
     // tops (the reference side here, being larger) are offset each by its own half thickness.
