@@ -10,6 +10,7 @@ use crate::model::params::Position;
 use crate::model::shapes::Handle;
 use crate::model::warning::Warning;
 use crate::pairing::driver::SolidPairing;
+use crate::pairing::Thickness;
 
 /// A patch made in the kernel, with what it came from.
 pub struct Made {
@@ -90,23 +91,22 @@ pub fn make_patches<K: Kernel>(
     Ok(out)
 }
 
+/// "(min..max); the patch is offset at the mean m".
+fn at_mean(t: Thickness) -> String {
+    format!("({:.3}..{:.3}); the patch is offset at the mean {:.3}", t.min, t.max, t.mean)
+}
+
 fn plan_warning(solid: usize, note: PlanNote) -> Warning {
     match note {
         PlanNote::ThicknessStep { group, faces, thickness: t } => Warning {
             code: "thickness_step",
-            message: format!(
-                "group {group}: both sides span a thickness step ({:.3}..{:.3}); the patch is offset at the mean {:.3}",
-                t.min, t.max, t.mean
-            ),
+            message: format!("group {group}: both sides span a thickness step {}", at_mean(t)),
             solid: Some(solid),
             faces,
         },
         PlanNote::ThicknessVaries { group, faces, thickness: t } => Warning {
             code: "thickness_varies",
-            message: format!(
-                "group {group}: the wall's thickness varies within its pairs ({:.3}..{:.3}); the patch is offset at the mean {:.3}",
-                t.min, t.max, t.mean
-            ),
+            message: format!("group {group}: the wall's thickness varies within its pairs {}", at_mean(t)),
             solid: Some(solid),
             faces,
         },

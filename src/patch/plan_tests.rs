@@ -68,6 +68,20 @@ fn a_draft_patch_on_a_skin_lies_on_that_face_plane() {
     assert!(normal.distance(-pn) < 1e-12 && (origin - po).dot(pn).abs() < 1e-12);
 }
 
+/// A bottom at z=0 (x 0..40) under a floor at z=2 (x -30..25) and a recess-like top at z=3 (x 25..40); the
+/// floor also lies over a lower bottom at z=-1 (x -35..0): neither side sits at one thickness.
+fn two_levels_on_each_side() -> (FaceGraph, Pairing) {
+    let faces = vec![
+        synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 40.0, -DVec3::Z),
+        synthetic::rect(DVec3::new(-35.0, 0.0, -1.0), DVec3::Y * 10.0, DVec3::X * 35.0, -DVec3::Z),
+        synthetic::rect(DVec3::new(-30.0, 0.0, 2.0), DVec3::X * 55.0, DVec3::Y * 10.0, DVec3::Z),
+        synthetic::rect(DVec3::new(25.0, 0.0, 3.0), DVec3::X * 15.0, DVec3::Y * 10.0, DVec3::Z),
+    ];
+    let g = synthetic::graph(faces, &[]);
+    let pairing = detect(&g, &Tolerances::new(60.0, 4.0, 0.05), &[true; 4]);
+    (g, pairing)
+}
+
 #[test]
 fn a_tapered_wall_is_noted_as_varying_not_as_a_step() {
     // A plate whose one pair was measured 1.8 to 2.2 thick (a taper) is noted as varying; bottoms at two
@@ -78,14 +92,7 @@ fn a_tapered_wall_is_noted_as_varying_not_as_a_step() {
     pairing.pairs[0].thickness = Thickness { mean: 2.0, min: 1.8, max: 2.2 };
     let (_, notes) = plan_patches(&g, &pairing, Position::Mid, &[]);
     assert!(matches!(notes[..], [PlanNote::ThicknessVaries { .. }]), "{notes:?}");
-    let faces = vec![
-        synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 40.0, -DVec3::Z),
-        synthetic::rect(DVec3::new(-35.0, 0.0, -1.0), DVec3::Y * 10.0, DVec3::X * 35.0, -DVec3::Z),
-        synthetic::rect(DVec3::new(-30.0, 0.0, 2.0), DVec3::X * 55.0, DVec3::Y * 10.0, DVec3::Z),
-        synthetic::rect(DVec3::new(25.0, 0.0, 3.0), DVec3::X * 15.0, DVec3::Y * 10.0, DVec3::Z),
-    ];
-    let g = synthetic::graph(faces, &[]);
-    let pairing = detect(&g, &Tolerances::new(60.0, 4.0, 0.05), &[true; 4]);
+    let (g, pairing) = two_levels_on_each_side();
     let (_, notes) = plan_patches(&g, &pairing, Position::Mid, &[]);
     assert!(!notes.is_empty() && notes.iter().all(|n| matches!(n, PlanNote::ThicknessStep { .. })), "{notes:?}");
 }
@@ -112,14 +119,7 @@ fn a_face_over_two_levels_gives_a_patch_per_level_each_kept_off_the_other() {
     // floor also lies over a lower bottom at z=-1 (x -35..0), so neither side sits at one thickness and
     // the bottoms, being larger, are the reference. One offset of the first bottom would be mid-way over
     // one level only: it gives a patch per level, clipped to that level's partner and off the other's.
-    let faces = vec![
-        synthetic::rect(DVec3::ZERO, DVec3::Y * 10.0, DVec3::X * 40.0, -DVec3::Z),
-        synthetic::rect(DVec3::new(-35.0, 0.0, -1.0), DVec3::Y * 10.0, DVec3::X * 35.0, -DVec3::Z),
-        synthetic::rect(DVec3::new(-30.0, 0.0, 2.0), DVec3::X * 55.0, DVec3::Y * 10.0, DVec3::Z),
-        synthetic::rect(DVec3::new(25.0, 0.0, 3.0), DVec3::X * 15.0, DVec3::Y * 10.0, DVec3::Z),
-    ];
-    let g = synthetic::graph(faces, &[]);
-    let pairing = detect(&g, &Tolerances::new(60.0, 4.0, 0.05), &[true; 4]);
+    let (g, pairing) = two_levels_on_each_side();
     let (plans, _) = plan_patches(&g, &pairing, Position::Mid, &[]);
     let got: Vec<(Vec<FaceId>, Placement, Vec<Vec<FaceId>>, Vec<Vec<FaceId>>, bool)> = plans
         .iter()
