@@ -99,8 +99,8 @@ fn uniform(per_face: &[(FaceId, Vec<&Pair>)]) -> bool {
 /// The faces of a side sit at distinct thicknesses from their partners (a step between pairs), not only at
 /// a thickness that varies within a pair (a tapered or freeform wall).
 fn levels_differ(per_face: &[(FaceId, Vec<&Pair>)]) -> bool {
-    let means: Vec<f64> = per_face.iter().flat_map(|(_, pairs)| pairs.iter().map(|p| p.thickness.mean)).collect();
-    let (low, high) = means.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &m| (l.min(m), h.max(m)));
+    let means = per_face.iter().flat_map(|(_, pairs)| pairs.iter().map(|p| p.thickness.mean));
+    let (low, high) = means.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), m| (l.min(m), h.max(m)));
     high - low > SAME_THICKNESS * high
 }
 
@@ -139,11 +139,11 @@ fn choose_reference<'a>(
     let chosen = if uniform(&candidates[0]) || !uniform(&candidates[1]) { 0 } else { 1 };
     let side = order[chosen];
     let note = if !uniform(&candidates[chosen]) {
-        let (group_id, faces, thickness) = (group.id, group.sides[side].clone(), group.thickness);
+        let (id, faces, thickness) = (group.id, group.sides[side].clone(), group.thickness);
         Some(if levels_differ(&candidates[chosen]) {
-            PlanNote::ThicknessStep { group: group_id, faces, thickness }
+            PlanNote::ThicknessStep { group: id, faces, thickness }
         } else {
-            PlanNote::ThicknessVaries { group: group_id, faces, thickness }
+            PlanNote::ThicknessVaries { group: id, faces, thickness }
         })
     } else if coverage(side) < MIN_COVERAGE {
         Some(PlanNote::PartialOverlap { group: group.id, faces: group.sides[side].clone(), coverage: coverage(side) })

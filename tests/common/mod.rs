@@ -59,12 +59,6 @@ impl AsRef<Path> for Scratch {
     }
 }
 
-impl AsRef<std::ffi::OsStr> for Scratch {
-    fn as_ref(&self) -> &std::ffi::OsStr {
-        self.0.as_os_str()
-    }
-}
-
 /// Every `*.step` directly in `dir`, sorted.
 pub fn step_files(dir: &Path) -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
