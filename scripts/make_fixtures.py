@@ -28,14 +28,15 @@ from build123d import (
     extrude, make_face, thicken,
 )
 from OCP.BOPAlgo import BOPAlgo_Builder
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.GProp import GProp_GProps
 from OCP.IFSelect import IFSelect_ReturnStatus
 from OCP.STEPControl import STEPControl_Reader
 from OCP.TopAbs import TopAbs_FACE, TopAbs_SOLID, TopAbs_ShapeEnum
-from OCP.TopExp import TopExp
-from OCP.TopoDS import TopoDS_Shape
+from OCP.TopExp import TopExp, TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Shape
 from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
 REPO = Path(__file__).resolve().parent.parent
@@ -607,6 +608,28 @@ def tube_oblique_end() -> Fixture:
     return Fixture(part, math.pi * (20**2 - 18**2) * 40, 4)
 
 
+# Where some CAD exports place a cylinder's axis point (out along the axis) in a part of a few centimetres.
+FAR_ORIGIN = 5e5
+
+
+def tube_oblique_end_far_origins() -> Fixture:
+    """`tube_oblique_end` as some CAD exports write it: every plane's and cylinder's parametric origin moved
+    FAR_ORIGIN along its own directions, far from the part, the shape itself unchanged (read back: the same
+    faces and volume). The class of exact geometry in huge parameters: its mid-surface is the tube's.
+    The move is the sidecar's own (load.reanchor), run the other way.
+    """
+    sys.path.insert(0, str(REPO / "sidecar"))
+    from midsurf_sidecar.load.reanchor import translate_parameters  # noqa: PLC0415 (the sidecar is not a package here)
+
+    fixture = tube_oblique_end()
+    moved = BRepBuilderAPI_Copy(fixture.solid.wrapped).Shape()
+    explorer = TopExp_Explorer(moved, TopAbs_FACE)
+    while explorer.More():
+        translate_parameters(TopoDS.Face(explorer.Current()), -FAR_ORIGIN, -FAR_ORIGIN)
+        explorer.Next()
+    return Fixture(Solid(moved), fixture.volume, fixture.faces)
+
+
 def channel_low_end() -> Fixture:
     """A channel closed at one end by a lower wall: floor 100 x 60 x 2, side walls 2 thick and 40 high along
     its long edges, an end wall 2 thick and 20 high between them at x = 0, flush with their ends. The class of
@@ -781,6 +804,7 @@ PARTS: list[Callable[[], Fixture]] = [
     bspline_shell,
     bspline_shell_rib,
     tube_oblique_end,
+    tube_oblique_end_far_origins,
     channel_low_end,
     channel_thick_flanges,
     plate_land,

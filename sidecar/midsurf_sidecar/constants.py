@@ -163,6 +163,11 @@ MERIDIAN_ISO = 1e-6
 # tolerance::RIM_SHARE): a curved patch overshooting its rim by no more is not cut to the solid.
 RIM_SHARE = 0.1
 
+# A plane, cylinder or cone face whose parametric origin lies more than this many times the face's size (its
+# bounding box diagonal) from the face gets an origin at the face at load (load.reanchor): OCCT's 2D
+# algorithms lose accuracy on parameters far larger than the face they describe.
+ANCHOR_FAR = 100.0
+
 # A boolean split only cuts faces: the pieces of a face cover its area, up to what merging within the fuzzy value
 # moves (fuzzy x its boundary). Faces whose pieces differ by more, together by more than this share of the area
 # split, are a broken result (inverted or dropped loops), not a split (geom.booleans.check_area_kept).

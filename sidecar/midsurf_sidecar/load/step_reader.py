@@ -14,6 +14,7 @@ from OCP.TopoDS import TopoDS_Shape
 
 from ..geom.topology import indexed_map
 from ..protocol.errors import OpError
+from .reanchor import reanchored
 
 
 def load_step(path: str) -> list[TopoDS_Shape]:
@@ -53,7 +54,7 @@ def load_step_checked(path: str) -> tuple[list[TopoDS_Shape], list[dict]]:
     solids = indexed_map(shape, TopAbs_SOLID)
     if solids.Size() == 0:
         raise OpError(f"has {_content_summary(shape)}, no solid{cause}", "no_solid")
-    return [_placed(solids.FindKey(i)) for i in range(1, solids.Size() + 1)], problems
+    return [reanchored(_placed(solids.FindKey(i))) for i in range(1, solids.Size() + 1)], problems
 
 
 def _placed(solid: TopoDS_Shape) -> TopoDS_Shape:
