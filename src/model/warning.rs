@@ -9,8 +9,9 @@ use crate::model::face_graph::FaceId;
 #[derive(Debug, Clone, Serialize)]
 pub struct Warning {
     /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict,
-    /// thickness_step, thickness_varies, partial_overlap, joint_failed, stitch_failed, open_edges, invalid_output,
-    /// feature_not_suppressed, face_not_described, solid_failed, step_syntax, option_out_of_range.
+    /// thickness_step, thickness_varies, partial_overlap, joint_failed, stitch_failed, stitch_pass_failed,
+    /// open_edges, invalid_output, feature_not_suppressed, face_not_described, solid_failed, step_syntax,
+    /// option_out_of_range.
     pub code: &'static str,
     pub message: String,
     #[serde(skip_serializing_if = "Option::is_none")]

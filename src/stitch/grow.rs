@@ -30,6 +30,17 @@ pub(super) enum Pass {
     Partners,
 }
 
+impl Pass {
+    /// Its name in reports.
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            Pass::Joints => "joints",
+            Pass::Rims => "rims",
+            Pass::Partners => "partners",
+        }
+    }
+}
+
 /// One pass of `stitch` over the free edges `free` of `fused` and their probes (with meetings for a joints
 /// pass): the result fused again, its kept pieces and the branches dropped; None when a rims pass finds
 /// nothing to grow. `curved_rims`: Some when curved edges grow to the rim too (see `edges::to_rim`), set when

@@ -75,6 +75,8 @@ pub struct Stitched {
     pub free: FreeEdges,
     /// The patches (indices) with an open edge left.
     pub open_patches: BTreeSet<usize>,
+    /// The passes after the first that the kernel failed (their joints are not made), with the kernel's word.
+    pub failed_passes: Vec<String>,
 }
 
 /// Free edges of the kept faces: (edge, its one kept face), in edge order.
@@ -135,17 +137,40 @@ pub fn stitch<K: Kernel>(
     fuzzy: f64,
 ) -> Result<Stitched, SidecarError> {
     let mut tally = JointTally::default();
+    let mut failed_passes = Vec::new();
     let (free, probes) = free_and_probed(kernel, fused, keep, patches, true)?;
-    let grown = run_pass(kernel, fused, keep, &free, &probes, patches, solids, fuzzy, Pass::Joints, &mut tally)?;
+    let grown = run_pass(
+        kernel,
+        fused,
+        keep,
+        &free,
+        &probes,
+        patches,
+        solids,
+        fuzzy,
+        Pass::Joints,
+        &mut tally,
+        &mut failed_passes,
+    )?;
     let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
     peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
     // The free edges of the result, probed once for both the rims pass and the final count.
     let (mut free, mut probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
     let (mut counted, mut open_patches) = classify_free(&fused, &free, &probes, patches, solids);
     if counted.open_edges > 0 {
-        if let Some((again, again_keep, more)) =
-            run_pass(kernel, &fused, &keep, &free, &probes, patches, solids, fuzzy, Pass::Rims, &mut tally)?
-        {
+        if let Some((again, again_keep, more)) = run_pass(
+            kernel,
+            &fused,
+            &keep,
+            &free,
+            &probes,
+            patches,
+            solids,
+            fuzzy,
+            Pass::Rims,
+            &mut tally,
+            &mut failed_passes,
+        )? {
             (fused, keep) = (again, again_keep);
             branches.extend(more);
             peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
@@ -166,6 +191,7 @@ pub fn stitch<K: Kernel>(
             fuzzy,
             Pass::Partners,
             &mut tally,
+            &mut failed_passes,
         )? {
             (fused, keep) = (again, again_keep);
             branches.extend(more);
@@ -174,14 +200,15 @@ pub fn stitch<K: Kernel>(
             (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
         }
     }
-    Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches })
+    Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches, failed_passes })
 }
 
 /// One pass of stitching, growing curved edges to the rim too; when the kernel fails it (a fuse that gives up),
 /// the same pass growing straight edges only: a curved edge's strip is a ruled face (but along a cylinder's
 /// axis or a cone's ruling), which the fuse gives up on more often, and a failed pass loses every joint in it.
 /// A pass after the first only improves on what the first made: when the kernel fails that too, the stitching
-/// and its joint tally stand as they were. A kernel that stops answering is an error.
+/// and its joint tally stand as they were, and the failure is added to `failed_passes`. A kernel that stops
+/// answering is an error.
 #[allow(clippy::too_many_arguments)]
 fn run_pass<K: Kernel>(
     kernel: &mut K,
@@ -194,6 +221,7 @@ fn run_pass<K: Kernel>(
     fuzzy: f64,
     pass: Pass,
     tally: &mut JointTally,
+    failed_passes: &mut Vec<String>,
 ) -> Result<Option<Grown>, SidecarError> {
     let before = tally.clone();
     let mut curved = false;
@@ -206,6 +234,7 @@ fn run_pass<K: Kernel>(
     match outcome {
         Err(e) if e.code().is_some() && pass != Pass::Joints => {
             *tally = before;
+            failed_passes.push(format!("the {} pass: {e}", pass.name()));
             Ok(None)
         }
         other => other,
@@ -246,7 +275,8 @@ pub(super) fn kept_faces(keep: &[bool]) -> Vec<usize> {
 
 /// What the stitch stage hands on: the fused patches with the pieces kept, every branch dropped (by trimming
 /// and by stitching), the joints, the free edges (None when stitching failed and the patches are written
-/// unstitched) and the warnings, in that order: open edges or the failure, then the joints not made.
+/// unstitched) and the warnings, in that order: the passes the kernel failed and the open edges, or the failure;
+/// then the joints not made.
 pub struct Outcome {
     pub fused: Fused,
     pub keep: Vec<bool>,
@@ -270,6 +300,15 @@ pub fn stitch_part<K: Kernel>(
     let (fused, keep, joints, free) = match stitch(kernel, &fused, &keep, patches, solids, fuzzy) {
         Ok(s) => {
             branches.extend(s.branches);
+            warnings.extend(s.failed_passes.iter().map(|failure| Warning {
+                code: "stitch_pass_failed",
+                message: format!(
+                    "the kernel failed {failure}; its joints are not made and the edges it grows stay as the \
+                     earlier passes left them"
+                ),
+                solid: None,
+                faces: Vec::new(),
+            }));
             warnings.extend(open_edges_warning(&s.free, &s.open_patches));
             (s.fused, s.keep, s.joints, Some(s.free))
         }

@@ -290,3 +290,45 @@ fn a_failed_pass_growing_no_curved_edge_is_not_made_again() {
     assert_eq!(result.err().and_then(|e| e.code().map(str::to_string)), Some("kernel_failed".to_string()));
     assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "fuse"]);
 }
+
+#[test]
+fn a_later_pass_the_kernel_fails_leaves_the_earlier_stitching_and_says_so() {
+    // The straight edge of the plate above, 0.7 short of the rim: the joints pass grows it, but its fused result
+    // still has the edge where it was (as a kernel that merged the strip away would leave it). The rims pass
+    // grows it again and its fuse fails: the joints pass's stitching stands, the failure is named, and the
+    // partners pass finds no partner for the edge.
+    let (a, b) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
+    let fused = fused(vec![face(0, DVec3::Z)], vec![edge(a, b, &[0])]);
+    let edge_probe = json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[])]});
+    let replies = vec![
+        edge_probe.clone(),
+        json!({"handle": 20, "strips": [{"area": 7.0, "error": null}], "corners": []}),
+        json!({"handle": 30, "faces": 1}),
+        json!({"handle": 40, "faces": [face(0, DVec3::Z)], "edges": [edge(a, b, &[0])]}),
+        edge_probe.clone(),
+        json!({"handle": 21, "strips": [{"area": 7.0, "error": null}], "corners": []}),
+        json!({"handle": 31, "faces": 1}),
+        json!({"error": {"code": "kernel_failed", "message": "the fuse gave up"}}),
+        edge_probe,
+    ];
+    let (stitched, kernel) = run(&fused, &[info(2.0, (1, 0))], (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies);
+
+    assert_eq!(
+        kernel.ops(),
+        [
+            "probe_edges",
+            "extend_edges",
+            "gather",
+            "fuse",
+            "probe_edges",
+            "extend_edges",
+            "gather",
+            "fuse",
+            "probe_edges"
+        ]
+    );
+    assert_eq!(stitched.fused.handle, 40, "the joints pass's result stands");
+    assert_eq!(stitched.failed_passes, ["the rims pass: the fuse gave up"]);
+    assert_eq!(stitched.joints, [report(vec![1], "rim", 1, 10.0)], "the rims pass's strip is not counted");
+    assert_eq!(stitched.free.open_edges, 1);
+}
