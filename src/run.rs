@@ -16,6 +16,7 @@ use crate::model::params::Position;
 use crate::model::shapes::Shells;
 use crate::model::tolerance;
 use crate::output::assemble::{self, Asked};
+use crate::output::coverage;
 use crate::output::files::Files;
 use crate::output::report::Timings;
 use crate::output::shells;
@@ -116,8 +117,15 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     warnings.extend(left_out);
     shells::checked(&mut assembled, &written, &stitched.fused);
     warnings.extend(assembled.warning.clone());
-    kernel.shutdown();
     timings.write = since(t);
+
+    let t = Instant::now();
+    let coverage =
+        coverage::per_solid(&mut kernel, &part, &pairings, made, &stitched.fused, &assembled.shells, &of_solid)
+            .map_err(failed)?;
+    warnings.extend(coverage::warnings(&coverage));
+    kernel.shutdown();
+    timings.coverage = since(t);
     timings.total = since(started);
 
     let asked = Asked {
@@ -128,7 +136,8 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
         keep_solids: args.keep_solids,
     };
     let timings = args.timings.then_some(timings);
-    let report = assemble::report(&asked, &part, &pairings, made, &shared, stitched, assembled, warnings, timings);
+    let report =
+        assemble::report(&asked, &part, &pairings, made, &shared, stitched, assembled, coverage, warnings, timings);
     files.finish(&report)?;
     eprintln!("{}", assemble::summary_line(&args.output, &report));
     Ok(if report.warnings.is_empty() { Exit::Clean } else { Exit::Warnings })

@@ -139,6 +139,8 @@ fn a_solid_that_is_not_thin_walled_gets_no_patch_and_is_kept_on_request() {
     let patches = report["patches"].as_array().unwrap();
     assert!(!patches.is_empty() && patches.iter().all(|p| p["solid"] == 1), "the pin gets no patch");
     assert_eq!(report["solids"][1]["kept_as_solid"], false);
+    assert!(report["solids"][1]["coverage"].is_null(), "no coverage figure for a solid that is not thin-walled");
+    assert!(report["solids"][0]["coverage"]["share"].as_f64().unwrap() > 0.99);
     let csv = std::fs::read_to_string(&csv).unwrap();
     assert!(csv.lines().last().unwrap().starts_with(",2,not_thin_walled,2.690,"), "{csv}");
     assert!(!std::fs::read_to_string(&out).unwrap().contains("MANIFOLD_SOLID_BREP"));
@@ -150,6 +152,31 @@ fn a_solid_that_is_not_thin_walled_gets_no_patch_and_is_kept_on_request() {
     let step = std::fs::read_to_string(&out).unwrap();
     assert_eq!(step.matches("MANIFOLD_SOLID_BREP").count(), 1, "the pin, as a solid");
     assert!(step.contains("solid 2 not_thin_walled"));
+}
+
+#[test]
+fn walls_left_without_a_patch_show_in_the_coverage_and_a_warning_naming_their_faces() {
+    let dir = scratch("run-coverage");
+    let (out, rep) = (dir.join("mid.step"), dir.join("r.json"));
+    let coverage = |report: &serde_json::Value| report["solids"][0]["coverage"]["share"].as_f64().unwrap();
+    let o = run("fixtures/channel_thick_flanges.step", &out, &rep, &[]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    assert!(coverage(&read_json(&rep)) > 0.99);
+    // A t_max under the flanges' 2.5 leaves them unpaired: about 60% of the volume (the flanges' 2 x 2.5 x
+    // 28.5 x 80 of the channel's ~19000 mm3), charged to their four skins.
+    let o = run("fixtures/channel_thick_flanges.step", &out, &rep, &["--t-max", "2"]);
+    assert_eq!(o.code, 1, "{}", o.stderr);
+    let report = read_json(&rep);
+    assert!((coverage(&report) - 0.4).abs() < 0.03, "{}", coverage(&report));
+    let missed: Vec<u64> = report["solids"][0]["coverage"]["missed"].as_array().unwrap()[..4]
+        .iter()
+        .map(|m| m["face"].as_u64().unwrap())
+        .collect();
+    let mut flanges = missed.clone();
+    flanges.sort();
+    assert_eq!(flanges, [0, 7, 9, 13], "{missed:?}");
+    let warning = report["warnings"].as_array().unwrap().iter().find(|w| w["code"] == "material_uncovered");
+    assert!(warning.is_some_and(|w| w["message"].as_str().unwrap().contains("of its material lies out of reach")));
 }
 
 /// The figures of a run that say how its patches meet: components, open edges (free edges left in the

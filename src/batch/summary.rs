@@ -30,6 +30,8 @@ pub struct Row {
     pub rim_edges: Option<usize>,
     /// Share of the part's area in pairs, over all its solids (area-weighted).
     pub paired_share: Option<f64>,
+    /// Share of the thin-walled solids' volume within reach of the mid-surface (volume-weighted over them).
+    pub coverage: Option<f64>,
     /// Wall time of the part's `midsurf run`, in seconds (of the earlier batch when reused).
     pub time_s: f64,
     /// The error line of a failed run.
@@ -65,12 +67,20 @@ impl Row {
                 }
             }
             self.paired_share = (area > 0.0).then(|| paired / area);
+            let (mut covered, mut volume) = (0.0, 0.0);
+            for s in solids {
+                if let (Some(share), Some(v)) = (s["coverage"]["share"].as_f64(), s["volume"].as_f64()) {
+                    covered += share * v.abs();
+                    volume += v.abs();
+                }
+            }
+            self.coverage = (volume > 0.0).then(|| covered / volume);
         }
     }
 }
 
 const COLUMNS: &str = "part,input,exit,status,warnings,patches,faces,shells,components,valid,nonmanifold_edges,\
-open_edges,open_length,rim_edges,paired_share,time_s,error,key";
+open_edges,open_length,rim_edges,paired_share,coverage,time_s,error,key";
 
 fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n', '\r']) {
@@ -103,6 +113,7 @@ pub fn csv(rows: &[Row]) -> String {
             r.open_length.map(|v| format!("{v:.3}")).unwrap_or_default(),
             opt(&r.rim_edges),
             r.paired_share.map(|v| format!("{v:.4}")).unwrap_or_default(),
+            r.coverage.map(|v| format!("{v:.4}")).unwrap_or_default(),
             format!("{:.2}", r.time_s),
             csv_field(r.error.as_deref().unwrap_or("")),
             r.key.clone(),
@@ -184,7 +195,8 @@ mod tests {
             "result": {"faces": 7, "shells": 2, "valid": true,
                        "free_edges": {"open_edges": 4, "open_length": 1.5, "rim_edges": 9}},
             "topology": {"components": 2, "nonmanifold_edges": 0},
-            "solids": [{"paired_share": 1.0, "area": 3.0}, {"paired_share": 0.5, "area": 1.0}],
+            "solids": [{"paired_share": 1.0, "area": 3.0, "volume": 6.0, "coverage": {"share": 0.9}},
+                       {"paired_share": 0.5, "area": 1.0, "volume": 2.0}],
         });
         let mut row = Row {
             part: "a,b".into(),
@@ -199,7 +211,9 @@ mod tests {
         assert_eq!((row.warnings, row.patches, row.faces, row.components), (Some(2), Some(3), Some(7), Some(2)));
         assert_eq!((row.open_edges, row.rim_edges, row.valid), (Some(4), Some(9), Some(true)));
         assert_eq!(row.paired_share, Some(0.875));
+        // A solid without a coverage figure (not thin-walled) is left out of the weighting.
+        assert_eq!(row.coverage, Some(0.9));
         let text = csv(&[row]);
-        assert_eq!(text.lines().nth(1).unwrap(), "\"a,b\",x,1,ran,2,3,7,2,2,true,0,4,1.500,9,0.8750,1.23,,k");
+        assert_eq!(text.lines().nth(1).unwrap(), "\"a,b\",x,1,ran,2,3,7,2,2,true,0,4,1.500,9,0.8750,0.9000,1.23,,k");
     }
 }

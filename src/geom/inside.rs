@@ -87,6 +87,20 @@ impl SolidMesh {
         self.hits(p, dir, reach).filter(|&d| d <= reach).min_by(f64::total_cmp)
     }
 
+    /// Distances along `dir` (unit) from `p` to every triangle the ray meets within `reach`, sorted, hits
+    /// closer than `merge` to the previous one dropped (a ray through an edge two triangles share meets both).
+    pub fn crossings_along(&self, p: DVec3, dir: DVec3, reach: f64, merge: f64) -> Vec<f64> {
+        let mut all: Vec<f64> = self.hits(p, dir, reach).filter(|&d| d <= reach).collect();
+        all.sort_by(f64::total_cmp);
+        all.dedup_by(|later, earlier| *later - *earlier <= merge);
+        all
+    }
+
+    /// The box around the mesh.
+    pub fn bounds(&self) -> (DVec3, DVec3) {
+        (self.lo, self.hi)
+    }
+
     fn crossings(&self, p: DVec3, dir: DVec3, reach: f64) -> usize {
         self.hits(p, dir, reach).count()
     }

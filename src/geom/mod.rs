@@ -2,6 +2,7 @@
 
 pub mod bodies;
 pub mod clip;
+pub mod coverage;
 pub mod inside;
 pub mod ray;
 

@@ -9,6 +9,7 @@ use super::report::{
 use super::shells::{written_area, Assembled};
 use super::topology;
 use crate::geom::bodies::SharedFace;
+use crate::geom::coverage::Coverage;
 use crate::load::Part;
 use crate::model::face_graph::FaceGraph;
 use crate::model::params::Position;
@@ -42,6 +43,7 @@ pub fn report(
     shared: &[SharedFace],
     stitched: Outcome,
     assembled: Assembled,
+    coverage: Vec<Option<Coverage>>,
     mut warnings: Vec<Warning>,
     timings: Option<Timings>,
 ) -> Report {
@@ -72,9 +74,11 @@ pub fn report(
             .solids
             .iter()
             .zip(pairings)
+            .zip(coverage)
             .enumerate()
-            .map(|(i, (s, sp))| SolidReport {
+            .map(|(i, ((s, sp), coverage))| SolidReport {
                 kept_as_solid: asked.keep_solids && !sp.class.is_thin_walled(),
+                coverage,
                 shared_faces: shared_face_reports(i, shared),
                 ..solid_report(i + 1, &s.graph, sp)
             })
@@ -164,6 +168,7 @@ fn solid_report(solid: usize, graph: &FaceGraph, sp: &SolidPairing) -> SolidRepo
         unpaired,
         paired_share: sp.paired_share,
         paired_skin_share: sp.paired_skin_share,
+        coverage: None,
         shared_faces: Vec::new(),
     }
 }

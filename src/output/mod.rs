@@ -3,6 +3,7 @@
 //! `midsurf pairs`'s text.
 
 pub mod assemble;
+pub mod coverage;
 pub mod files;
 pub mod inspect;
 pub mod pairs_table;

@@ -70,6 +70,10 @@ pub struct SolidReport {
     pub unpaired: Vec<Unpaired>,
     pub paired_share: f64,
     pub paired_skin_share: f64,
+    /// Share of the solid's volume within reach of the mid-surface written (thin-walled solids only), with
+    /// the faces nearest to the material out of reach (geom::coverage).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coverage: Option<crate::geom::coverage::Coverage>,
     /// Faces this solid shares whole with other solids of the file (a partition): the stitching treats the
     /// solids as one body, and their patches meet across these faces.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -194,6 +198,8 @@ pub struct Timings {
     pub trim: f64,
     pub stitch: f64,
     pub write: f64,
+    /// The report's coverage figures (`solids[].coverage`).
+    pub coverage: f64,
     pub total: f64,
 }
 
