@@ -107,6 +107,9 @@ pub struct BatchCli {
     /// Where the patches lie through their walls (see `run`), for parts whose manifest row does not say.
     #[arg(long, value_enum)]
     pub position: Option<PositionArg>,
+    /// Width of the thickness bands (see `run`), for parts whose manifest row does not say.
+    #[arg(long, value_parser = band_width)]
+    pub t_bands: Option<f64>,
     /// Pairing options for every part whose manifest row does not set its own (see `run`).
     #[command(flatten)]
     pub pairing: PairingArgs,
@@ -127,6 +130,7 @@ impl BatchCli {
         put("fillet-max", p.fillet_max);
         put("hole-max", p.hole_max);
         put("boss-max", p.boss_max);
+        put("t-bands", self.t_bands);
         if p.keep_holes {
             o.insert("keep-holes".into(), "true".into());
         }
@@ -173,6 +177,11 @@ pub struct RunCli {
     /// the model stays complete for meshing them as solids or beams.
     #[arg(long)]
     pub keep_solids: bool,
+    /// Width of the thickness bands in mm: each patch's thickness is written (face names, colours, CSV, the
+    /// report's `band`, solver decks) as the nearest multiple of this, so that walls of nearly one thickness
+    /// share a name, a colour and a deck section. The report keeps the measured thickness too.
+    #[arg(long, default_value_t = crate::output::report::T_BAND_MIN, value_parser = band_width)]
+    pub t_bands: f64,
     #[command(flatten)]
     pub pairing: PairingArgs,
 }
@@ -222,6 +231,13 @@ impl PairingArgs {
     }
 }
 
+fn band_width(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= crate::output::report::T_BAND_MIN => Ok(v),
+        _ => Err(format!("'{s}' is not a band width in mm of at least {}", crate::output::report::T_BAND_MIN)),
+    }
+}
+
 fn positive_mm(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
@@ -259,6 +275,7 @@ pub fn run(cli: Cli) -> Result<Exit, Error> {
             position: r.position.into(),
             timings: !r.no_timings,
             keep_solids: r.keep_solids,
+            t_band: r.t_bands,
         }),
         Command::Batch(b) => crate::batch::run(&crate::batch::BatchArgs {
             defaults: b.defaults(),

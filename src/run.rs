@@ -37,6 +37,8 @@ pub struct RunArgs {
     pub timings: bool,
     /// Write the solids that are not thin-walled into the output STEP as solids.
     pub keep_solids: bool,
+    /// Width of the thickness bands (--t-bands, mm).
+    pub t_band: f64,
 }
 
 /// `run_once`, and once more when the kernel crashed after the file was read (the sidecar ended by a signal
@@ -106,11 +108,12 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     timings.stitch = since(t);
 
     let t = Instant::now();
-    let legend = assemble::thickness_legend(&patches.made);
+    let legend = assemble::thickness_legend(&patches.made, args.t_band);
     let made = &patches.made;
     let kept = if args.keep_solids { shells::kept_solids(&part, &pairings) } else { Vec::new() };
     let write = |kernel: &mut Sidecar, stitched: &stitch::Outcome, shells: &Shells| {
-        shells::write_step(kernel, &files, made, &stitched.fused, shells, &legend, kept.clone(), &args.input)
+        let (fused, band) = (&stitched.fused, args.t_band);
+        shells::write_step(kernel, &files, made, fused, shells, &legend, band, kept.clone(), &args.input)
     };
     let (mut assembled, written, left_out) =
         shells::write_checked(&mut kernel, &mut stitched, assembled, fuzzy, &args.input, write)?;
@@ -134,6 +137,7 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
         params: args.params,
         position: args.position,
         keep_solids: args.keep_solids,
+        t_band: args.t_band,
     };
     let timings = args.timings.then_some(timings);
     let report =

@@ -157,3 +157,36 @@ fn a_face_gmsh_fails_on_is_left_out_and_named() {
 fn a_face_gmsh_hangs_on_is_given_up_after_its_time_limit() {
     a_lost_face_is_named_and_the_decks_are_still_written("hang:3", "failed: timed out after 1 s");
 }
+
+#[test]
+fn thickness_bands_give_walls_of_nearly_one_thickness_one_name_one_colour_and_one_section() {
+    let dir = scratch("mesh-bands");
+    let sections = |bands: &[&str], name: &str| {
+        let (mid, rep, csv) = (dir.join(format!("{name}.step")), dir.join(format!("{name}.json")), dir.join("p.csv"));
+        let mut run = midsurf();
+        run.args(["run", "fixtures/channel_thick_flanges.step", "-o", mid.to_str().unwrap()])
+            .args(["--report", rep.to_str().unwrap(), "--csv", csv.to_str().unwrap()])
+            .args(bands);
+        let o = outcome(&mut run);
+        assert_eq!(o.code, 0, "{}", o.stderr);
+        let o = mesh(&mid, &rep, &dir.join(name), &["--size", "5", "--format", "k"]);
+        assert_eq!(o.code, 0, "{}", o.stderr);
+        let k = std::fs::read_to_string(dir.join(format!("{name}.k"))).unwrap();
+        let report = read_json(&rep);
+        let written: Vec<f64> =
+            report["patches"].as_array().unwrap().iter().map(|p| p["band"].as_f64().unwrap()).collect();
+        let csv = std::fs::read_to_string(&csv).unwrap();
+        (k.matches("*SECTION_SHELL").count(), report["thickness_legend"].as_array().unwrap().len(), written, csv)
+    };
+    // The web and rounds are 1.5 thick, the flanges 2.5: two thicknesses, two sections, two colours.
+    let (n, colours, written, _) = sections(&[], "fine");
+    assert_eq!((n, colours), (2, 2));
+    assert_eq!(written, [2.5, 1.5, 1.5, 1.5, 2.5]);
+    // Bands 2 mm wide: both are written as 2.0 (the nearest multiple), in one section and one colour.
+    let (n, colours, written, csv) = sections(&["--t-bands", "2"], "coarse");
+    assert_eq!((n, colours), (1, 1));
+    assert!(written.iter().all(|&t| t == 2.0), "{written:?}");
+    assert!(csv.lines().skip(1).all(|l| l.split(',').nth(3) == Some("2.000")), "{csv}");
+    let step = std::fs::read_to_string(dir.join("coarse.step")).unwrap();
+    assert!(step.contains("patch 1 t=2.000") && !step.contains("t=2.500"));
+}

@@ -9,7 +9,8 @@ use crate::error::Error;
 /// The `midsurf run` options a manifest may set per part, by flag name (a column or key may also spell them
 /// with underscores). They are passed to `midsurf run` as they are, so a part gets exactly the run it would
 /// get by hand.
-pub const OPTIONS: [&str; 7] = ["t-max", "draft-max", "fillet-max", "hole-max", "boss-max", "keep-holes", "position"];
+pub const OPTIONS: [&str; 8] =
+    ["t-max", "draft-max", "fillet-max", "hole-max", "boss-max", "keep-holes", "position", "t-bands"];
 
 /// Options of one part: flag name (one of `OPTIONS`) to value; `keep-holes` is "true" or "false".
 pub type Options = BTreeMap<String, String>;

@@ -58,6 +58,15 @@ struct RunPatch {
     id: usize,
     solid: usize,
     thickness: RunThickness,
+    /// The thickness written for the patch (its band); reports from before bands had none: the mean then.
+    #[serde(default)]
+    band: Option<f64>,
+}
+
+impl RunPatch {
+    fn written(&self) -> f64 {
+        self.band.unwrap_or(self.thickness.mean)
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -94,11 +103,10 @@ pub fn read(path: &Path) -> Result<RunFacts, Error> {
         other => return Err(Error::input(path, format!("unknown position {other:?}"))),
     };
     let part_of = run.patches.iter().map(|p| (p.id, p.solid)).collect();
-    let thickness_of: BTreeMap<usize, f64> =
-        run.patches.iter().map(|p| (p.id, deck_thickness(p.thickness.mean))).collect();
+    let thickness_of: BTreeMap<usize, f64> = run.patches.iter().map(|p| (p.id, deck_thickness(p.written()))).collect();
     // The STEP's colours: the report's legend, or (a report without one) the same legend made again.
     let legend = if run.thickness_legend.is_empty() {
-        legend(&run.patches.iter().map(|p| p.thickness.mean).collect::<Vec<f64>>())
+        legend(&run.patches.iter().map(RunPatch::written).collect::<Vec<f64>>())
     } else {
         run.thickness_legend.iter().map(|e| LegendEntry { thickness: e.thickness, color: e.color }).collect()
     };

@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use super::report::{
-    legend, LegendEntry, Parameters, PatchReport, Report, ResultSummary, RoleCounts, SharedFaceReport, SolidReport,
-    Timings, TrimmedReport, Unpaired, Warning, REPORT_VERSION,
+    band, legend, LegendEntry, Parameters, PatchReport, Report, ResultSummary, RoleCounts, SharedFaceReport,
+    SolidReport, Timings, TrimmedReport, Unpaired, Warning, REPORT_VERSION,
 };
 use super::shells::{written_area, Assembled};
 use super::topology;
@@ -26,11 +26,13 @@ pub struct Asked<'a> {
     pub position: Position,
     /// The solids that are not thin-walled are written as solids (--keep-solids).
     pub keep_solids: bool,
+    /// Width of the thickness bands (--t-bands).
+    pub t_band: f64,
 }
 
-/// The thickness legend of the made patches: one colour band per distinct thickness.
-pub fn thickness_legend(made: &[Made]) -> Vec<LegendEntry> {
-    legend(&made.iter().map(|m| m.plan.thickness.mean).collect::<Vec<f64>>())
+/// The thickness legend of the made patches: one colour per band of width `t_band` holding a patch.
+pub fn thickness_legend(made: &[Made], t_band: f64) -> Vec<LegendEntry> {
+    legend(&made.iter().map(|m| band(m.plan.thickness.mean, t_band)).collect::<Vec<f64>>())
 }
 
 /// The report; `warnings` are those of the stages, in order (one more is added when nothing paired).
@@ -49,7 +51,7 @@ pub fn report(
 ) -> Report {
     let Outcome { fused, keep, branches, joints, free, .. } = stitched;
     let Assembled { shells, .. } = assembled;
-    let patches = patch_reports(made, &fused, &keep);
+    let patches = patch_reports(made, &fused, &keep, asked.t_band);
     if made.is_empty() {
         warnings.push(Warning {
             code: "no_pairs",
@@ -69,6 +71,7 @@ pub fn report(
             t_max: asked.params.t_max,
             draft_max_deg: asked.params.draft_max_deg,
             position: asked.position,
+            t_band: asked.t_band,
         },
         solids: part
             .solids
@@ -86,7 +89,7 @@ pub fn report(
         patches,
         trimmed: branches.iter().map(TrimmedReport::from_branch).collect(),
         joints,
-        thickness_legend: thickness_legend(made),
+        thickness_legend: thickness_legend(made, asked.t_band),
         result: ResultSummary {
             faces: shells.faces.len(),
             shells: shells.count,
@@ -113,7 +116,7 @@ pub fn summary_line(output: &Path, r: &Report) -> String {
     )
 }
 
-fn patch_reports(made: &[Made], fused: &Fused, keep: &[bool]) -> Vec<PatchReport> {
+fn patch_reports(made: &[Made], fused: &Fused, keep: &[bool], t_band: f64) -> Vec<PatchReport> {
     made.iter()
         .enumerate()
         .map(|(k, m)| {
@@ -126,6 +129,7 @@ fn patch_reports(made: &[Made], fused: &Fused, keep: &[bool]) -> Vec<PatchReport
                 kind: m.plan.kind,
                 source_faces: m.plan.faces.clone(),
                 thickness: m.plan.thickness,
+                band: band(m.plan.thickness.mean, t_band),
                 area: pieces.iter().map(|f| f.area).sum(),
                 faces: pieces.len(),
             }

@@ -44,6 +44,9 @@ pub struct Parameters {
     pub draft_max_deg: f64,
     /// Where the patches lie through their walls: mid, top (the reference face's skin) or bottom.
     pub position: crate::model::params::Position,
+    /// Width of the thickness bands (--t-bands): patches whose thickness falls in one band are written with
+    /// one thickness.
+    pub t_band: f64,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -131,6 +134,9 @@ pub struct PatchReport {
     pub kind: PairKind,
     pub source_faces: Vec<FaceId>,
     pub thickness: Thickness,
+    /// The thickness written for the patch (its face names, colour, CSV row, deck section): the mean in its
+    /// band (`parameters.t_band`).
+    pub band: f64,
     /// Area after trimming (sum of its faces in the output).
     pub area: f64,
     /// Faces of the patch in the output.
@@ -214,6 +220,14 @@ const PALETTE: [[f64; 3]; 7] = [
     [0.75, 0.20, 0.75],
 ];
 
+/// The finest thickness band (mm): the precision thicknesses are written with.
+pub const T_BAND_MIN: f64 = 0.001;
+
+/// `t` as written (names, colours, CSV, decks): the nearest multiple of the band width `width`, to 0.001 mm.
+pub fn band(t: f64, width: f64) -> f64 {
+    round((t / width).round() * width, 3)
+}
+
 /// One band per distinct thickness (to 0.001 mm), thinnest first.
 pub fn legend(thicknesses: &[f64]) -> Vec<LegendEntry> {
     let mut bands: Vec<f64> = thicknesses.iter().map(|t| round(*t, 3)).collect();
@@ -244,7 +258,7 @@ pub fn patches_csv(patches: &[PatchReport], solids: &[SolidReport]) -> String {
             p.id,
             p.solid,
             p.kind.name(),
-            p.thickness.mean,
+            p.band,
             p.area,
             p.faces,
             sources.join(" ")
@@ -269,6 +283,7 @@ mod tests {
             kind,
             source_faces: sources,
             thickness: Thickness { mean: t, min: t, max: t },
+            band: band(t, 0.5),
             area: 12.345,
             faces: 2,
         };
@@ -278,7 +293,15 @@ mod tests {
         );
         assert_eq!(
             csv,
-            "patch,solid,kind,thickness,area,faces,source_faces\n1,1,parallel,2.000,12.35,2,3 7\n2,1,draft,1.250,12.35,2,0\n"
+            "patch,solid,kind,thickness,area,faces,source_faces\n1,1,parallel,2.000,12.35,2,3 7\n2,1,draft,1.500,12.35,2,0\n"
         );
+    }
+
+    #[test]
+    fn a_thickness_is_written_as_the_nearest_multiple_of_the_band_width() {
+        assert_eq!(band(1.2345, T_BAND_MIN), 1.235);
+        assert_eq!(band(1.87, 0.25), 1.75);
+        assert_eq!(band(1.88, 0.25), 2.0);
+        assert_eq!(band(2.96, 0.1), 3.0, "to 0.001 mm, without the binary fraction's tail");
     }
 }

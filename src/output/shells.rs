@@ -6,7 +6,7 @@ use std::path::Path;
 
 use super::files::Files;
 use super::pending::Pending;
-use super::report::{band_color, LegendEntry};
+use super::report::{band, band_color, LegendEntry};
 use crate::error::Error;
 use crate::kernel::protocol::{FaceAttributes, KeptSolid, Request, Written};
 use crate::kernel::{Kernel, SidecarError};
@@ -63,6 +63,7 @@ pub fn write_step<K: Kernel>(
     fused: &Fused,
     shells: &Shells,
     legend: &[LegendEntry],
+    t_band: f64,
     solids: Vec<KeptSolid>,
     input: &Path,
 ) -> Result<Written, Error> {
@@ -72,7 +73,7 @@ pub fn write_step<K: Kernel>(
         .enumerate()
         .map(|(j, &piece)| {
             let k = fused.faces[piece].patch;
-            let t = made[k].plan.thickness.mean;
+            let t = band(made[k].plan.thickness.mean, t_band);
             FaceAttributes {
                 face: j,
                 name: format!("patch {} t={t:.3}", k + 1),
