@@ -34,6 +34,8 @@ SMOOTH_ANGLE = math.radians(1.0)
 CONVEXITY_SAMPLES = (0.25, 0.5, 0.75)
 # Angular deflection (radians) of the meshes `describe` returns; the linear deflection comes from Rust.
 MESH_ANGULAR_DEFLECTION = 0.5
+# Angular deflections (rad) a face BRepMesh left without a triangulation is meshed again with, in turn.
+MESH_RETRY_ANGLES = (0.2, 0.1, 0.05)
 # A face with more wires than this (a sheet with many holes) is triangulated with BRepMesh's Delabella
 # algorithm instead of its default (Watson). Watson's time on a face grows with its boundary nodes times its
 # wires, as it classifies against every wire; Delabella's about as its nodes. Measured on one face of a

@@ -3,11 +3,12 @@
 //! patch passes within REACH_SHARE of that patch's thickness: every point of a wall lies within half its
 //! thickness of the wall's mid-surface, and the rest is room for joints and rounded corners.
 //!
-//! Points are drawn uniformly in the material: rays along one fixed direction, one per cell of a regular grid
+//! Points are drawn uniformly in the material: rays along a fixed direction, one per cell of a regular grid
 //! over the solid's box (placed at a fixed pseudo-random spot of its cell), cross the material in intervals
 //! between their hits; each interval gives one point at a pseudo-random depth, weighted by the interval's
 //! length, so that the weights of a grid add up to the volume (Cavalieri). A ray with an odd number of hits
-//! (one that grazed an edge) is left out. The same meshes give the same points: the figure is deterministic.
+//! (one that grazed an edge) is left out. Three directions, nearly along the three axes, share the points. The
+//! same meshes give the same points: the figure is deterministic.
 
 use std::collections::BTreeMap;
 
@@ -22,11 +23,16 @@ use crate::model::face_graph::FaceId;
 /// A point is covered within this share of the nearest patch's thickness.
 pub const REACH_SHARE: f64 = 0.75;
 /// Rays per side of the grid at first; doubled while the material gave fewer than MIN_POINTS points.
-const GRID_START: usize = 64;
+const GRID_START: usize = 48;
 const GRID_MAX: usize = 256;
 const MIN_POINTS: usize = 2000;
-/// Off every axis and diagonal a CAD part is likely to line up with, so that few rays graze its edges.
-const DIRECTION: DVec3 = DVec3::new(0.013_142_1, -0.021_734_9, 1.0);
+/// Mostly along each axis but off every axis and diagonal a CAD part is likely to line up with, so that few
+/// rays graze its edges.
+const DIRECTIONS: [DVec3; 3] = [
+    DVec3::new(1.0, 0.021_734_9, -0.013_142_1),
+    DVec3::new(-0.017_320_5, 1.0, 0.011_180_3),
+    DVec3::new(0.013_142_1, -0.021_734_9, 1.0),
+];
 /// Two hits along a ray closer than this share of the box's diagonal are one (an edge two triangles share).
 const MERGE_HITS: f64 = 1e-9;
 /// Faces listed as the most missed, at most.
@@ -92,9 +98,27 @@ impl Triangles {
     }
 }
 
-/// Points spread uniformly through the material of `mesh` (see the module doc).
+/// Points spread uniformly through the material of `mesh` (see the module doc), from rays along each of
+/// DIRECTIONS in turn: a wall along one direction is crossed across by another, so no wall's share rests
+/// on a few long chords.
 pub fn material_samples(mesh: &SolidMesh) -> Vec<Sample> {
-    let dir = DIRECTION.normalize();
+    let mut grid = GRID_START;
+    loop {
+        let mut samples = Vec::new();
+        for (d, dir) in DIRECTIONS.iter().enumerate() {
+            along(mesh, dir.normalize(), grid, d as u64, &mut samples);
+        }
+        if samples.len() >= MIN_POINTS || grid >= GRID_MAX {
+            // Each direction's points add up to the volume: together, to three times it.
+            let share = 1.0 / DIRECTIONS.len() as f64;
+            return samples.into_iter().map(|s| Sample { weight: s.weight * share, ..s }).collect();
+        }
+        grid *= 2;
+    }
+}
+
+/// The points of the rays along `dir` from a `grid` x `grid` grid over the box of `mesh`, appended to `out`.
+fn along(mesh: &SolidMesh, dir: DVec3, grid: usize, stream: u64, out: &mut Vec<Sample>) {
     let (u, v) = plane_basis(dir);
     let (lo, hi) = mesh.bounds();
     let corners = (0..8).map(|k| DVec3::new(pick(k & 1, lo.x, hi.x), pick(k & 2, lo.y, hi.y), pick(k & 4, lo.z, hi.z)));
@@ -105,31 +129,22 @@ pub fn material_samples(mesh: &SolidMesh) -> Vec<Sample> {
     }
     let diagonal = (hi - lo).length();
     let (start, reach) = (min.z - 0.01 * diagonal, max.z - min.z + 0.02 * diagonal);
-    let mut grid = GRID_START;
-    loop {
-        let mut samples = Vec::new();
-        let cell = DVec3::new((max.x - min.x) / grid as f64, (max.y - min.y) / grid as f64, 0.0);
-        for i in 0..grid {
-            for j in 0..grid {
-                let cell_index = (i * grid + j) as u64;
-                let a = min.x + (i as f64 + unit(cell_index, 0)) * cell.x;
-                let b = min.y + (j as f64 + unit(cell_index, 1)) * cell.y;
-                let origin = u * a + v * b + dir * start;
-                let hits = mesh.crossings_along(origin, dir, reach, MERGE_HITS * diagonal);
-                if hits.len() % 2 == 1 {
-                    continue;
-                }
-                for (k, pair) in hits.chunks_exact(2).enumerate() {
-                    let depth = pair[0] + unit(cell_index, 2 + k as u64) * (pair[1] - pair[0]);
-                    let weight = (pair[1] - pair[0]) * cell.x * cell.y;
-                    samples.push(Sample { point: origin + dir * depth, weight });
-                }
+    let cell = DVec3::new((max.x - min.x) / grid as f64, (max.y - min.y) / grid as f64, 0.0);
+    for i in 0..grid {
+        for j in 0..grid {
+            let ray = ((stream * grid as u64 + i as u64) * grid as u64) + j as u64;
+            let a = min.x + (i as f64 + unit(ray, 0)) * cell.x;
+            let b = min.y + (j as f64 + unit(ray, 1)) * cell.y;
+            let origin = u * a + v * b + dir * start;
+            let hits = mesh.crossings_along(origin, dir, reach, MERGE_HITS * diagonal);
+            if hits.len() % 2 == 1 {
+                continue;
+            }
+            for (k, pair) in hits.chunks_exact(2).enumerate() {
+                let depth = pair[0] + unit(ray, 2 + k as u64) * (pair[1] - pair[0]);
+                out.push(Sample { point: origin + dir * depth, weight: (pair[1] - pair[0]) * cell.x * cell.y });
             }
         }
-        if samples.len() >= MIN_POINTS || grid >= GRID_MAX {
-            return samples;
-        }
-        grid *= 2;
     }
 }
 
@@ -218,9 +233,10 @@ mod tests {
     use super::*;
     use crate::synthetic::cuboid;
 
-    fn sheet_triangles(z: f64, tag: usize) -> Vec<([DVec3; 3], usize)> {
+    /// The rectangle [0, x] x [0, 4] at height z, as two triangles tagged `tag`.
+    fn sheet_triangles(x: f64, z: f64, tag: usize) -> Vec<([DVec3; 3], usize)> {
         let (a, b, c, d) =
-            (DVec3::new(0.0, 0.0, z), DVec3::new(10.0, 0.0, z), DVec3::new(10.0, 4.0, z), DVec3::new(0.0, 4.0, z));
+            (DVec3::new(0.0, 0.0, z), DVec3::new(x, 0.0, z), DVec3::new(x, 4.0, z), DVec3::new(0.0, 4.0, z));
         vec![([a, b, c], tag), ([a, c, d], tag)]
     }
 
@@ -248,16 +264,10 @@ mod tests {
         let graph = cuboid(DVec3::ZERO, DVec3::new(10.0, 4.0, 2.0));
         let samples = material_samples(&SolidMesh::new(&graph).unwrap());
         let faces = faces_of(&graph);
-        let whole = coverage(&samples, &Triangles::new(sheet_triangles(1.0, 0)), &[reach(2.0)], &faces).unwrap();
+        let whole = coverage(&samples, &Triangles::new(sheet_triangles(10.0, 1.0, 0)), &[reach(2.0)], &faces).unwrap();
         assert!(whole.share > 0.999 && whole.missed.is_empty(), "{whole:?}");
         // The left half only (x <= 5): the right half's material is missed, charged to the faces nearest it.
-        let (a, b, c, d) = (
-            DVec3::new(0.0, 0.0, 1.0),
-            DVec3::new(5.0, 0.0, 1.0),
-            DVec3::new(5.0, 4.0, 1.0),
-            DVec3::new(0.0, 4.0, 1.0),
-        );
-        let half = Triangles::new([([a, b, c], 0), ([a, c, d], 0)]);
+        let half = Triangles::new(sheet_triangles(5.0, 1.0, 0));
         let part = coverage(&samples, &half, &[reach(2.0)], &faces).unwrap();
         // Covered up to 1.5 beyond x = 5 (0.75 x 2): 6.5 of 10.
         assert!((part.share - 0.65).abs() < 0.02, "{part:?}");
@@ -271,7 +281,7 @@ mod tests {
         let samples = material_samples(&SolidMesh::new(&graph).unwrap());
         // A patch 3 above the plate's bottom, claiming 1.0 thick: it reaches down to z = 2.25 only.
         let off =
-            coverage(&samples, &Triangles::new(sheet_triangles(3.0, 0)), &[reach(1.0)], &faces_of(&graph)).unwrap();
+            coverage(&samples, &Triangles::new(sheet_triangles(10.0, 3.0, 0)), &[reach(1.0)], &faces_of(&graph)).unwrap();
         assert!(off.share < 0.001, "{off:?}");
         // No patch at all: nothing covered.
         let none = coverage(&samples, &Triangles::new(Vec::new()), &[], &faces_of(&graph)).unwrap();

@@ -1,18 +1,23 @@
 """Triangle meshes of a solid's faces: CCW seen from outside, with outward surface normals at the nodes."""
 
+import os
+import tempfile
 from typing import Any
 
-from OCP.BRep import BRep_Tool
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepLib import BRepLib_ToolTriangulatedShape
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.BRepTools import BRepTools
+from OCP.IFSelect import IFSelect_RetDone
+from OCP.Poly import Poly_Triangulation
+from OCP.STEPControl import STEPControl_AsIs, STEPControl_Reader, STEPControl_Writer
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
-from ..constants import MESH_ANGULAR_DEFLECTION, MIN_RELATIVE_MESH_TOLERANCE
-from ..geom.face_meshing import has_many_wires, mesh_delabella
+from ..constants import MESH_ANGULAR_DEFLECTION, MESH_RETRY_ANGLES, MIN_RELATIVE_MESH_TOLERANCE
+from ..geom.face_meshing import has_many_wires, mesh_delabella, mesh_face
 from ..geom.topology import diagonal
 from ..protocol.errors import BadArgs, KernelError
 
@@ -41,6 +46,57 @@ def mesh_shape(shape: TopoDS_Shape, tolerance: float) -> None:
     mesher = BRepMesh_IncrementalMesh(shape, tolerance, False, MESH_ANGULAR_DEFLECTION, False)
     if not mesher.IsDone():
         raise KernelError(f"BRepMesh_IncrementalMesh failed (tolerance {tolerance} mm)")
+    _mesh_again(shape, tolerance)
+
+
+def _mesh_again(shape: TopoDS_Shape, tolerance: float) -> None:
+    """Meshes each face BRepMesh left without a triangulation again on its own: with finer angular deflections
+    (MESH_RETRY_ANGLES) until one works, then a healed copy (`_healed_triangulation`). BRepMesh fails now and
+    then on a B-spline face at one setting and meshes it at the next (status BRepMesh_Failure; seen at 0.5
+    rad, not at 0.1 on the same face). A face that still fails keeps no triangulation."""
+    explorer = TopExp_Explorer(shape, TopAbs_FACE)
+    while explorer.More():
+        face = TopoDS.Face(explorer.Current())
+        if BRep_Tool.Triangulation_s(face, TopLoc_Location()) is None:
+            for angle in MESH_RETRY_ANGLES:
+                mesh_face(face, tolerance, angle)
+                if BRep_Tool.Triangulation_s(face, TopLoc_Location()) is not None:
+                    break
+            else:
+                healed = _healed_triangulation(face, tolerance)
+                if healed is not None:
+                    BRep_Builder().UpdateFace(face, healed)
+        explorer.Next()
+
+
+def _healed_triangulation(face: TopoDS_Face, tolerance: float) -> Poly_Triangulation | None:
+    """The triangulation of `face` after a STEP round trip of the face alone, or None. A face whose wire holds
+    edges shorter than BRepMesh's minimum size (a few micrometres, left by booleans) fails to mesh as an open,
+    self-intersecting wire whatever the settings; the STEP reader's healing merges such edges on the same
+    surface, and the healed face meshes. Its triangulation lies on the same surface with the same parameters
+    (the writer keeps them), so the face takes it as its own."""
+    handle, path = tempfile.mkstemp(suffix=".step")
+    os.close(handle)
+    try:
+        writer = STEPControl_Writer()
+        if writer.Transfer(face, STEPControl_AsIs) != IFSelect_RetDone or writer.Write(path) != IFSelect_RetDone:
+            return None
+        reader = STEPControl_Reader()
+        if reader.ReadFile(path) != IFSelect_RetDone or reader.TransferRoots() == 0:
+            return None
+        faces = TopExp_Explorer(reader.OneShape(), TopAbs_FACE)
+        if not faces.More():
+            return None
+        copy = TopoDS.Face(faces.Current())
+        faces.Next()
+        if faces.More():
+            return None  # split by the reader: no one face to stand for this one
+        mesh_face(copy, tolerance, MESH_ANGULAR_DEFLECTION)
+        location = TopLoc_Location()
+        triangulation = BRep_Tool.Triangulation_s(copy, location)
+        return triangulation if triangulation is not None and location.IsIdentity() else None
+    finally:
+        os.remove(path)
 
 
 def face_mesh(face: TopoDS_Face, reversed_face: bool) -> dict[str, Any]:
