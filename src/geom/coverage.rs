@@ -280,8 +280,8 @@ mod tests {
         let graph = cuboid(DVec3::ZERO, DVec3::new(10.0, 4.0, 2.0));
         let samples = material_samples(&SolidMesh::new(&graph).unwrap());
         // A patch 3 above the plate's bottom, claiming 1.0 thick: it reaches down to z = 2.25 only.
-        let off =
-            coverage(&samples, &Triangles::new(sheet_triangles(10.0, 3.0, 0)), &[reach(1.0)], &faces_of(&graph)).unwrap();
+        let off = coverage(&samples, &Triangles::new(sheet_triangles(10.0, 3.0, 0)), &[reach(1.0)], &faces_of(&graph))
+            .unwrap();
         assert!(off.share < 0.001, "{off:?}");
         // No patch at all: nothing covered.
         let none = coverage(&samples, &Triangles::new(Vec::new()), &[], &faces_of(&graph)).unwrap();
