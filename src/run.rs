@@ -123,10 +123,9 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     timings.write = since(t);
 
     let t = Instant::now();
-    let coverage =
-        coverage::per_solid(&mut kernel, &part, &pairings, made, &stitched.fused, &assembled.shells, &of_solid)
-            .map_err(failed)?;
-    warnings.extend(coverage::warnings(&coverage));
+    let (coverage, uncovered) =
+        coverage::measure(&mut kernel, &part, &pairings, made, &stitched.fused, &assembled.shells, &of_solid);
+    warnings.extend(uncovered);
     kernel.shutdown();
     timings.coverage = since(t);
     timings.total = since(started);

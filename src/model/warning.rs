@@ -10,7 +10,7 @@ use crate::model::face_graph::FaceId;
 pub struct Warning {
     /// Stable, machine-readable: no_pairs, unpaired_face, patch_failed, side_conflict,
     /// thickness_step, thickness_varies, partial_overlap, joint_failed, stitch_failed, stitch_pass_failed,
-    /// open_edges, material_uncovered, invalid_output, feature_not_suppressed, face_not_described, solid_failed, step_syntax,
+    /// open_edges, material_uncovered, coverage_not_measured, invalid_output, feature_not_suppressed, face_not_described, solid_failed, step_syntax,
     /// option_out_of_range.
     pub code: &'static str,
     pub message: String,

@@ -17,9 +17,42 @@ const UNCOVERED_WARN: f64 = 0.05;
 /// Faces the warning names, the most missed first.
 const NAMED_IN_WARNING: usize = 5;
 
-/// Per solid (as `part.solids`): its coverage, None for a solid that is not thin-walled. All None when the
-/// kernel cannot mesh the shells (an op error); a kernel that stops answering is an error.
-pub fn per_solid<K: Kernel>(
+/// Per solid (as `part.solids`): its coverage, None for a solid that is not thin-walled; and the warnings: a
+/// solid with much of its material out of reach, or no figure at all when the kernel failed to mesh the shells
+/// (whether the op failed or the sidecar stopped answering): the mid-surface is written by then, and a check
+/// is never a reason to lose it.
+#[allow(clippy::too_many_arguments)]
+pub fn measure<K: Kernel>(
+    kernel: &mut K,
+    part: &Part,
+    pairings: &[SolidPairing],
+    made: &[Made],
+    fused: &Fused,
+    shells: &Shells,
+    body_of_solid: &[usize],
+) -> (Vec<Option<Coverage>>, Vec<Warning>) {
+    match per_solid(kernel, part, pairings, made, fused, shells, body_of_solid) {
+        Ok(coverage) => {
+            let warnings = warnings(&coverage);
+            (coverage, warnings)
+        }
+        Err(e) => {
+            let warning = Warning {
+                code: "coverage_not_measured",
+                message: format!(
+                    "the coverage of the solids by the mid-surface was not measured: the kernel could not mesh the \
+                     mid-surface ({})",
+                    crate::error::one_line(&e.to_string())
+                ),
+                solid: None,
+                faces: Vec::new(),
+            };
+            (vec![None; part.solids.len()], vec![warning])
+        }
+    }
+}
+
+fn per_solid<K: Kernel>(
     kernel: &mut K,
     part: &Part,
     pairings: &[SolidPairing],
@@ -37,11 +70,7 @@ pub fn per_solid<K: Kernel>(
         None
     } else {
         let request = Request::Describe { handle: shells.handle, mesh: true, mesh_tolerance };
-        match kernel.call(&request) {
-            Ok(graph) => Some(graph),
-            Err(e) if e.code().is_some() => return Ok(vec![None; part.solids.len()]),
-            Err(e) => return Err(e),
-        }
+        Some(kernel.call(&request)?)
     };
     // Per face of the shells (the describe keeps their order): its patch.
     let patch_of = |j: usize| fused.faces[shells.faces[j]].patch;
@@ -64,7 +93,7 @@ pub fn per_solid<K: Kernel>(
 }
 
 /// The warnings of solids (1-based as reported) with much of their material out of reach of every patch.
-pub fn warnings(coverage: &[Option<Coverage>]) -> Vec<Warning> {
+fn warnings(coverage: &[Option<Coverage>]) -> Vec<Warning> {
     let low = coverage.iter().enumerate().filter_map(|(i, c)| c.as_ref().map(|c| (i + 1, c)));
     low.filter(|(_, c)| 1.0 - c.share > UNCOVERED_WARN)
         .map(|(solid, c)| {
@@ -92,4 +121,58 @@ pub fn warnings(coverage: &[Option<Coverage>]) -> Vec<Warning> {
 
 fn tagged(face: &Face, tag: usize) -> impl Iterator<Item = ([glam::DVec3; 3], usize)> + '_ {
     face.mesh.iter().flat_map(move |m| m.triangles.iter().map(move |t| (t.map(|i| m.vertices[i as usize]), tag)))
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+    use crate::kernel::fake::FakeKernel;
+    use crate::load::Solid;
+    use crate::model::shapes::FusedFace;
+    use crate::pairing::driver::{pair_solid, PairingParams};
+    use crate::pairing::features::LimitArgs;
+
+    #[test]
+    fn a_kernel_that_cannot_mesh_the_mid_surface_costs_the_figure_not_the_run() {
+        let graph = crate::synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0));
+        let pairing =
+            pair_solid(&graph, PairingParams { t_max: None, draft_max_deg: 3.0, limits: LimitArgs::default() });
+        let part = Part {
+            solids: vec![Solid { handle: 1, graph, mesh_tolerance: 0.1 }],
+            skipped: vec![],
+            entity_problems: vec![],
+        };
+        let face = FusedFace {
+            patch: 0,
+            area: 6000.0,
+            centroid: DVec3::ZERO,
+            point: DVec3::ZERO,
+            normal: DVec3::Z,
+            edges: vec![],
+        };
+        let fused = Fused { handle: 2, faces: vec![face], edges: vec![] };
+        let shells = Shells {
+            handle: 3,
+            count: 1,
+            components: 1,
+            faces: vec![0],
+            valid: true,
+            invalid: vec![],
+            edges: 4,
+            vertices: 4,
+            free_edges: 4,
+            nonmanifold_edges: 0,
+        };
+        let mut kernel = FakeKernel::new(vec![
+            serde_json::json!({"error": {"code": "kernel_failed", "message": "BRepMesh failed"}}),
+        ]);
+        let (coverage, warnings) = measure(&mut kernel, &part, &[pairing], &[], &fused, &shells, &[0]);
+        assert_eq!(kernel.ops(), ["describe"]);
+        assert_eq!(coverage, vec![None]);
+        assert_eq!(warnings.len(), 1);
+        assert_eq!(warnings[0].code, "coverage_not_measured");
+        assert!(warnings[0].message.contains("BRepMesh failed"), "{}", warnings[0].message);
+    }
 }
