@@ -123,8 +123,15 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     timings.write = since(t);
 
     let t = Instant::now();
-    let (coverage, uncovered) =
-        coverage::measure(&mut kernel, &part, &pairings, made, &stitched.fused, &assembled.shells, &of_solid);
+    let written = coverage::Written {
+        part: &part,
+        pairings: &pairings,
+        made,
+        fused: &stitched.fused,
+        shells: &assembled.shells,
+        body_of_solid: &of_solid,
+    };
+    let (coverage, uncovered) = coverage::measure(&mut kernel, &written);
     warnings.extend(uncovered);
     kernel.shutdown();
     timings.coverage = since(t);

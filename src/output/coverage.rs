@@ -17,21 +17,24 @@ const UNCOVERED_WARN: f64 = 0.05;
 /// Faces the warning names, the most missed first.
 const NAMED_IN_WARNING: usize = 5;
 
+/// What the coverage is measured on: the part and its pairing, the patches made, and the shells written of
+/// their fused pieces (`body_of_solid`: the body of each solid, whose patches count for all its solids).
+#[derive(Clone, Copy)]
+pub struct Written<'a> {
+    pub part: &'a Part,
+    pub pairings: &'a [SolidPairing],
+    pub made: &'a [Made],
+    pub fused: &'a Fused,
+    pub shells: &'a Shells,
+    pub body_of_solid: &'a [usize],
+}
+
 /// Per solid (as `part.solids`): its coverage, None for a solid that is not thin-walled; and the warnings: a
 /// solid with much of its material out of reach, or no figure at all when the kernel failed to mesh the shells
 /// (whether the op failed or the sidecar stopped answering): the mid-surface is written by then, and a check
 /// is never a reason to lose it.
-#[allow(clippy::too_many_arguments)]
-pub fn measure<K: Kernel>(
-    kernel: &mut K,
-    part: &Part,
-    pairings: &[SolidPairing],
-    made: &[Made],
-    fused: &Fused,
-    shells: &Shells,
-    body_of_solid: &[usize],
-) -> (Vec<Option<Coverage>>, Vec<Warning>) {
-    match per_solid(kernel, part, pairings, made, fused, shells, body_of_solid) {
+pub fn measure<K: Kernel>(kernel: &mut K, written: &Written) -> (Vec<Option<Coverage>>, Vec<Warning>) {
+    match per_solid(kernel, written) {
         Ok(coverage) => {
             let warnings = warnings(&coverage);
             (coverage, warnings)
@@ -47,26 +50,19 @@ pub fn measure<K: Kernel>(
                 solid: None,
                 faces: Vec::new(),
             };
-            (vec![None; part.solids.len()], vec![warning])
+            (vec![None; written.part.solids.len()], vec![warning])
         }
     }
 }
 
-fn per_solid<K: Kernel>(
-    kernel: &mut K,
-    part: &Part,
-    pairings: &[SolidPairing],
-    made: &[Made],
-    fused: &Fused,
-    shells: &Shells,
-    body_of_solid: &[usize],
-) -> Result<Vec<Option<Coverage>>, SidecarError> {
+fn per_solid<K: Kernel>(kernel: &mut K, written: &Written) -> Result<Vec<Option<Coverage>>, SidecarError> {
+    let Written { part, pairings, made, fused, shells, body_of_solid } = *written;
     let thin = |i: usize| pairings[i].class.is_thin_walled();
     let mesh_tolerance = (0..part.solids.len())
         .filter(|&i| thin(i))
         .map(|i| part.solids[i].mesh_tolerance)
         .fold(f64::INFINITY, f64::min);
-    let written: Option<FaceGraph> = if shells.faces.is_empty() || !mesh_tolerance.is_finite() {
+    let meshed: Option<FaceGraph> = if shells.faces.is_empty() || !mesh_tolerance.is_finite() {
         None
     } else {
         let request = Request::Describe { handle: shells.handle, mesh: true, mesh_tolerance };
@@ -83,7 +79,7 @@ fn per_solid<K: Kernel>(
         let body = body_of_solid[i];
         let own = |j: usize| body_of_solid[made[patch_of(j)].solid - 1] == body;
         let patches = Triangles::new(
-            written.iter().flat_map(|g| g.faces.iter()).filter(|f| own(f.id)).flat_map(|f| tagged(f, patch_of(f.id))),
+            meshed.iter().flat_map(|g| g.faces.iter()).filter(|f| own(f.id)).flat_map(|f| tagged(f, patch_of(f.id))),
         );
         let faces = Triangles::new(solid.graph.faces.iter().flat_map(|f| tagged(f, f.id)));
         let samples = coverage::material_samples(&SolidMesh::of_faces(solid.graph.faces.iter())?);
@@ -168,7 +164,15 @@ mod tests {
         let mut kernel = FakeKernel::new(vec![
             serde_json::json!({"error": {"code": "kernel_failed", "message": "BRepMesh failed"}}),
         ]);
-        let (coverage, warnings) = measure(&mut kernel, &part, &[pairing], &[], &fused, &shells, &[0]);
+        let written = Written {
+            part: &part,
+            pairings: &[pairing],
+            made: &[],
+            fused: &fused,
+            shells: &shells,
+            body_of_solid: &[0],
+        };
+        let (coverage, warnings) = measure(&mut kernel, &written);
         assert_eq!(kernel.ops(), ["describe"]);
         assert_eq!(coverage, vec![None]);
         assert_eq!(warnings.len(), 1);
