@@ -59,24 +59,24 @@ impl Row {
         self.components = uint(&topology["components"]);
         self.nonmanifold_edges = uint(&topology["nonmanifold_edges"]);
         if let Some(solids) = report["solids"].as_array() {
-            let (mut paired, mut area) = (0.0, 0.0);
-            for s in solids {
-                if let (Some(share), Some(a)) = (s["paired_share"].as_f64(), s["area"].as_f64()) {
-                    paired += share * a;
-                    area += a;
-                }
-            }
-            self.paired_share = (area > 0.0).then(|| paired / area);
-            let (mut covered, mut volume) = (0.0, 0.0);
-            for s in solids {
-                if let (Some(share), Some(v)) = (s["coverage"]["share"].as_f64(), s["volume"].as_f64()) {
-                    covered += share * v.abs();
-                    volume += v.abs();
-                }
-            }
-            self.coverage = (volume > 0.0).then(|| covered / volume);
+            self.paired_share = weighted_mean(solids, |s| s["paired_share"].as_f64(), |s| s["area"].as_f64());
+            self.coverage =
+                weighted_mean(solids, |s| s["coverage"]["share"].as_f64(), |s| s["volume"].as_f64().map(f64::abs));
         }
     }
+}
+
+/// The mean of `value` over `solids`, weighted by `weight`; a solid lacking either is left out.
+fn weighted_mean(
+    solids: &[serde_json::Value],
+    value: impl Fn(&serde_json::Value) -> Option<f64>,
+    weight: impl Fn(&serde_json::Value) -> Option<f64>,
+) -> Option<f64> {
+    let (sum, total) = solids
+        .iter()
+        .filter_map(|s| Some((value(s)?, weight(s)?)))
+        .fold((0.0, 0.0), |(sum, total), (v, w)| (sum + v * w, total + w));
+    (total > 0.0).then(|| sum / total)
 }
 
 const COLUMNS: &str = "part,input,exit,status,warnings,patches,faces,shells,components,valid,nonmanifold_edges,\
