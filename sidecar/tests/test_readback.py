@@ -49,3 +49,27 @@ def test_a_face_read_back_comes_from_the_face_its_edges_lie_on():
     boxes = [readback._box(face) for face in faces]
     for k, face in enumerate(faces):
         assert readback._origin(face, faces, boxes, 1e-3) == k
+
+
+def test_a_face_without_a_wire_is_named_broken(tmp_path):
+    # A face without a wire stands for its whole unbounded surface: broken even where BRepCheck passes it.
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.gp import gp_Pln
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+
+    faces = box_faces()
+    infinite = BRepBuilderAPI_MakeFace(gp_Pln()).Face()
+    written = shells_of([faces[:3], [infinite], faces[3:]])
+    path = str(tmp_path / "unbounded.step")
+    writer = STEPControl_Writer()
+    writer.Transfer(written, STEPControl_AsIs)
+    writer.Write(path)
+    own = indexed_map(written, TopAbs_FACE)
+    check = readback.check_written(path, written)
+    assert not check.valid
+    assert check.invalid == [own.FindIndex(infinite) - 1]
+    bounded = shells_of([faces])
+    writer = STEPControl_Writer()
+    writer.Transfer(bounded, STEPControl_AsIs)
+    writer.Write(str(tmp_path / "box.step"))
+    assert readback.check_written(str(tmp_path / "box.step"), bounded).valid
