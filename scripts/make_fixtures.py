@@ -771,6 +771,21 @@ def bspline_shell_rib() -> Fixture:
     return Fixture(part, part.volume, 15, volume_rel_tol=1e-6)
 
 
+def rib_boss_bore() -> Fixture:
+    """Plate 100 x 60 x 3 with a rib 3 thick and 13.5 high along y (x 48.5..51.5, z 3..16.5, the full 60), and a
+    screw boss (outside R 4.5, bore R 2, z 3..14.5) on the axis (46.75, 30) that runs into the rib: the bore, cut
+    after the boss joins the rib, eats 0.25 into the rib's side and leaves a sliver of ceiling 2 under the rib's
+    top. The class: a rib's top facing a pocket inside the rib (moulded housings with bosses on ribs), material
+    of the rib's own slab that its patch spans, not a wall of its own. Mid-surface: plate z = 1.5, rib x = 50,
+    the boss's cylinder R 3.25 meeting the rib, all joined. Faces: 15. Volume: the built solid's (the bore's cut
+    into the rib has no short closed form).
+    """
+    boss = cylinder_z(46.75, 30, 3, 4.5, 11.5)
+    part = box(0, 0, 0, 100, 60, 3) + box(48.5, 0, 3, 3, 60, 13.5) + boss - cylinder_z(46.75, 30, 3, 2, 11.5)
+    part = single_solid(part)
+    return Fixture(part, part.volume, 15)
+
+
 PARTS: list[Callable[[], Fixture]] = [
     flat_plate,
     l_bracket,
@@ -813,6 +828,7 @@ PARTS: list[Callable[[], Fixture]] = [
     l_bracket_partitioned,
     t_rib_touching,
     plates_butted,
+    rib_boss_bore,
 ]
 
 

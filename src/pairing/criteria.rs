@@ -191,22 +191,45 @@ pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same
     })
 }
 
-/// Both faces of `pair` reach from one skin of another pair to its other skin (each meets both skins, through
-/// a suppressed blend at most), and that pair overlaps over more area: the material between the two faces is
-/// a web of a perforated wall (between two holes or slots narrower apart than the wall is thick), which the
-/// wall's patch spans already. A web's own patch would stand across the wall's, a strip as high as the wall is
-/// thick, joined to nothing at its ends. A lone bar whose sides pair is no web: its faces across are narrower
-/// than its sides (`stub_sides`), and its sides overlap over more area.
+/// The material between the faces of `pair` belongs to a wider wall's slab, which that wall's patch spans
+/// already: one face reaches from one skin of another pair to its other skin (each meets both skins, through a
+/// suppressed blend at most), and the other face either does too or lies between the two (planar) skins'
+/// planes. Both reaching: a web of a perforated wall (between two holes or slots narrower apart than the wall
+/// is thick). One reaching: the wall's rim or a rib's top facing a pocket inside the wall (a bore's ceiling
+/// under a rib's top, a slot's side near a plate's edge). Such a pair's patch would stand across the wall's,
+/// joined to nothing at its ends. A lone bar whose sides pair is no web: its faces across are narrower than its
+/// sides (`stub_sides`), and its sides overlap over more area.
 pub fn web_of_sheet(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], pairable: &[bool]) -> Option<Rejection> {
-    let [a, b] = pair.faces.map(|f| reach(graph, f, pairable));
-    a.iter().filter(|&&s| b.binary_search(&s).is_ok()).find_map(|&s| {
-        pairs_of[s].iter().find_map(|sheet| {
-            let other = sheet.other(s);
-            let spans = a.binary_search(&other).is_ok() && b.binary_search(&other).is_ok();
-            let wider = sheet.overlap_area > pair.overlap_area && !sheet.faces.iter().any(|f| pair.faces.contains(f));
-            (spans && wider).then_some(Rejection::Web { thickness: pair.thickness.mean, sheet: sheet.thickness.mean })
+    let reached = pair.faces.map(|f| reach(graph, f, pairable));
+    let spans = |k: usize, sheet: &Pair| sheet.faces.iter().all(|s| reached[k].binary_search(s).is_ok());
+    (0..2).find_map(|k| {
+        reached[k].iter().find_map(|&s| {
+            pairs_of[s].iter().find_map(|sheet| {
+                let wider =
+                    sheet.overlap_area > pair.overlap_area && !sheet.faces.iter().any(|f| pair.faces.contains(f));
+                let other = 1 - k;
+                let inside = spans(other, sheet) || in_slab(graph, pair.faces[other], sheet);
+                (wider && spans(k, sheet) && inside)
+                    .then_some(Rejection::Web { thickness: pair.thickness.mean, sheet: sheet.thickness.mean })
+            })
         })
     })
+}
+
+/// Every vertex of `face`'s mesh lies between the planes of the two skins of `sheet` (both planar), within a
+/// hundredth of the sheet's thickness. A face without a mesh, or a sheet that is not planar, is not inside.
+fn in_slab(graph: &FaceGraph, face: FaceId, sheet: &Pair) -> bool {
+    let [a, b] = sheet.faces.map(|f| &graph.faces[f]);
+    let (Surface::Plane { origin: pa, normal: n }, Surface::Plane { origin: pb, .. }) = (&a.surface, &b.surface) else {
+        return false;
+    };
+    let (da, db) = (n.dot(*pa), n.dot(*pb));
+    let slack = 0.01 * sheet.thickness.mean;
+    let (lo, hi) = (da.min(db) - slack, da.max(db) + slack);
+    graph.faces[face]
+        .mesh
+        .as_ref()
+        .is_some_and(|m| !m.vertices.is_empty() && m.vertices.iter().all(|v| (lo..=hi).contains(&n.dot(*v))))
 }
 
 /// The faces `face` meets, directly or across one face left out of pairing (a suppressed round or chamfer),

@@ -627,3 +627,25 @@ fn a_web_between_two_holes_of_a_plate_is_the_plate_a_rib_on_it_is_a_wall() {
     let pairing = detect(&graph_with_lengths(faces, &rib), &tol(), &[true; 4]);
     assert_eq!(pairing.pairs.iter().map(|p| p.faces).collect::<Vec<_>>(), vec![[0, 1], [2, 3]]);
 }
+
+#[test]
+fn a_face_spanning_a_plate_facing_a_pocket_inside_it_is_the_plate_not_a_wall() {
+    // The 3.0 slab (bottom 0, top 1); face 2 spans it (meets both skins: its rim, or a rib's top), face 3 faces
+    // it 1.5 away, lying inside the slab (a bore's ceiling, a pocket's side): the plate's own material. When
+    // face 3 reaches out of the slab (z 0.5..4.5), the material between is no longer the plate's: a wall.
+    let pocket = |height: f64| {
+        vec![
+            rect(DVec3::new(20.0, 10.0, 0.0), DVec3::Z * 3.0, DVec3::Y * 20.0, -DVec3::X),
+            rect(DVec3::new(21.5, 10.0, 0.5), DVec3::Y * 20.0, DVec3::Z * height, DVec3::X),
+        ]
+    };
+    let spans = [(0, 2, Convexity::Convex, 20.0), (1, 2, Convexity::Convex, 20.0)];
+    let mut faces = slab_faces(3.0);
+    faces.extend(pocket(2.0));
+    let pairing = detect(&graph_with_lengths(faces, &spans), &tol(), &[true; 4]);
+    assert_eq!(pairing.pairs.iter().map(|p| p.faces).collect::<Vec<_>>(), vec![[0, 1]]);
+    let mut faces = slab_faces(3.0);
+    faces.extend(pocket(4.0));
+    let pairing = detect(&graph_with_lengths(faces, &spans), &tol(), &[true; 4]);
+    assert_eq!(pairing.pairs.iter().map(|p| p.faces).collect::<Vec<_>>(), vec![[0, 1], [2, 3]]);
+}
