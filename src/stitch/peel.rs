@@ -8,7 +8,7 @@
 //! an overshoot past the wall it crossed is held along that crossing only, and the rest of its boundary is free.
 //! So a piece out of its wall goes when a large share of its boundary is free, and only when taking it away
 //! leaves no neighbour with a new free edge (a piece that other pieces hang on stays). An island of such pieces,
-//! joined to no piece lying in its wall, goes whole; so does any island smaller than its thickness squared.
+//! joined to no piece lying in its wall, goes whole; so does any island smaller than (2 t)^2, a fragment.
 
 use crate::geom::inside::SolidMesh;
 use crate::model::shapes::Fused;
@@ -19,6 +19,12 @@ use super::PatchInfo;
 /// Material across a piece up to this many times its patch's thickness is its own wall (a tapered wall measures
 /// up to its thickest end; a wall crossed lengthwise measures its whole extent).
 const OWN_WALL_FACTOR: f64 = 2.0;
+/// An island of pieces (joined to no other) smaller than a square this many times its thickness wide is a
+/// fragment (a sliver left where patches cross, a scrap cut off by the joints), not a wall: a shell element is no
+/// smaller than the wall is thick, so it would hold at most four, joined to nothing; a floating fragment in a
+/// crash model only flies off. The smallest wall a thin-walled solid can have is 5 t wide (its thickness is at
+/// most a fifth of its extent), so no whole wall is this small.
+const FRAGMENT_SIDE: f64 = 2.0;
 /// Share of a piece's boundary that must be free for it to dangle: an overshoot strip has one long side free
 /// (about half its boundary); a piece held on two sides has at most its short ends free.
 const FREE_SHARE: f64 = 0.25;
@@ -62,12 +68,13 @@ pub(super) fn dangling(fused: &Fused, keep: &[bool], patches: &[PatchInfo], soli
         peeled.extend(round);
     }
     // An island of narrow pieces none of which lies in its own wall (cut off by the rounds, or made so) is no
-    // wall's mid-surface, even the largest piece of its patch. Nor is an island smaller than a square as wide as
-    // its wall is thick, wherever it lies: no shell element fits on it (a sliver left where patches cross).
+    // wall's mid-surface, even the largest piece of its patch. Nor is an island smaller than a square twice as
+    // wide as its wall is thick, wherever it lies (`FRAGMENT_SIDE`).
     for set in connected_sets(fused, &kept) {
         let area: f64 = set.iter().map(|&f| fused.faces[f].area).sum();
         let thickness = set.iter().map(|&f| patches[fused.faces[f].patch].thickness).fold(0.0, f64::max);
-        if area < thickness * thickness || set.iter().all(|&f| out[f] && narrow(fused, f, patches)) {
+        let side = FRAGMENT_SIDE * thickness;
+        if area < side * side || set.iter().all(|&f| out[f] && narrow(fused, f, patches)) {
             for f in set {
                 kept[f] = false;
                 peeled.push(f);
@@ -224,14 +231,15 @@ mod tests {
     }
 
     #[test]
-    fn an_island_smaller_than_its_thickness_squared_is_peeled_even_in_its_wall() {
+    fn an_island_smaller_than_twice_its_thickness_squared_is_peeled_even_in_its_wall() {
         let (mut fused, solids) = plate_and_wall();
-        // Patch 2's one piece lies in the plate's mid-plane, joined to nothing: 3.9 mm2 under 2 x 2 goes, 4.1 stays.
-        fused.faces.push(face(2, 3.9, DVec3::new(20.0, 10.0, 1.0), DVec3::Z, vec![9]));
+        // Patch 2's one piece lies in the plate's mid-plane, joined to nothing: 15.9 mm2 under 4 x 4 goes, 16.1
+        // stays.
+        fused.faces.push(face(2, 15.9, DVec3::new(20.0, 10.0, 1.0), DVec3::Z, vec![9]));
         fused.edges.push(edge(8.0, vec![5]));
         let peeled = dangling(&fused, &[true; 6], &[info(), info(), info()], &solids);
         assert_eq!(peeled.iter().map(|b| b.piece).collect::<Vec<_>>(), vec![2, 5]);
-        fused.faces[5].area = 4.1;
+        fused.faces[5].area = 16.1;
         let peeled = dangling(&fused, &[true; 6], &[info(), info(), info()], &solids);
         assert_eq!(peeled.iter().map(|b| b.piece).collect::<Vec<_>>(), vec![2]);
     }
