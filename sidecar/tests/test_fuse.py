@@ -262,3 +262,16 @@ def test_a_stem_section_is_cut_only_along_the_chain_through_the_joint():
     chain = _chain_through(section, joint)
     assert len(chain) == 2
     assert all(abs(BRep_Tool.Pnt_s(TopoDS.Vertex(v)).Y()) < 1e-9 for e in chain for v in subshapes(e, TopAbs_VERTEX))
+
+
+def test_a_foot_ending_inside_a_face_is_an_edge_inside_it(client):
+    # A wall standing on the plate with its foot (x = 30, y 10..30) inside the plate: the plate cannot be split
+    # along it, and holds it as an INTERNAL edge, which a STEP file drops.
+    strip = rectangle((30, 10, 1), (30, 30, 1), (30, 30, 40), (30, 10, 40))
+    fused = fuse(client, put_patches(client, horizontal(), strip))
+    plate = [i for i, f in enumerate(fused["faces"]) if f["patch"] == 0]
+    assert len(plate) == 1
+    (foot,) = [e for e in fused["edges"] if on_line(e, x=30.0, z=1.0)]
+    assert foot["inside"] == plate
+    assert sorted(fused["faces"][i]["patch"] for i in foot["faces"]) == [0, 1]
+    assert all("inside" not in e for e in fused["edges"] if e is not foot)

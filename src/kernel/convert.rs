@@ -29,7 +29,7 @@ impl From<wire::FusedFace> for FusedFace {
 
 impl From<wire::FusedEdge> for FusedEdge {
     fn from(w: wire::FusedEdge) -> FusedEdge {
-        FusedEdge { length: w.length, faces: w.faces, points: w.points }
+        FusedEdge { length: w.length, faces: w.faces, points: w.points, inside: w.inside }
     }
 }
 

@@ -318,6 +318,9 @@ pub struct FusedEdge {
     pub length: f64,
     pub faces: Vec<usize>,
     pub points: Vec<glam::DVec3>,
+    /// The faces (of `faces`) that hold the edge inside them (INTERNAL), not on their boundary.
+    #[serde(default)]
+    pub inside: Vec<usize>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]

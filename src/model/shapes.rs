@@ -39,6 +39,9 @@ pub struct FusedEdge {
     pub length: f64,
     pub faces: Vec<usize>,
     pub points: Vec<DVec3>,
+    /// The faces (of `faces`) that hold the edge inside them (an INTERNAL edge: a joint ending inside a face
+    /// along a curve that could not split it). A STEP file keeps no such edge: it joins nothing once written.
+    pub inside: Vec<usize>,
 }
 
 /// The shells made of the kept faces of a fused shape.

@@ -12,7 +12,7 @@
 
 use crate::geom::inside::SolidMesh;
 use crate::model::shapes::Fused;
-use crate::trim::{connected_sets, largest_pieces, Branch, TrimReason};
+use crate::trim::{largest_pieces, written_sets, Branch, TrimReason};
 
 use super::PatchInfo;
 
@@ -70,7 +70,9 @@ pub(super) fn dangling(fused: &Fused, keep: &[bool], patches: &[PatchInfo], soli
     // An island of narrow pieces none of which lies in its own wall (cut off by the rounds, or made so) is no
     // wall's mid-surface, even the largest piece of its patch. Nor is an island smaller than a square twice as
     // wide as its wall is thick, wherever it lies (`FRAGMENT_SIDE`).
-    for set in connected_sets(fused, &kept) {
+    // Islands as the file will hold them: a piece joined to the rest only through an edge inside another piece
+    // (a joint that ended inside a face without splitting it) is alone once written.
+    for set in written_sets(fused, &kept) {
         let area: f64 = set.iter().map(|&f| fused.faces[f].area).sum();
         let thickness = set.iter().map(|&f| patches[fused.faces[f].patch].thickness).fold(0.0, f64::max);
         let side = FRAGMENT_SIDE * thickness;
@@ -166,7 +168,7 @@ mod tests {
     }
 
     fn edge(length: f64, faces: Vec<usize>) -> FusedEdge {
-        FusedEdge { length, faces, points: Vec::new() }
+        FusedEdge { length, faces, points: Vec::new(), inside: Vec::new() }
     }
 
     fn info() -> PatchInfo {

@@ -312,10 +312,21 @@ pub fn merge_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
 /// Groups the kept pieces into connected sets (through edges shared by two kept pieces), each sorted, in
 /// order of their lowest piece: one shell each.
 pub fn connected_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
+    sets_joined(fused, keep, false)
+}
+
+/// `connected_sets` as a STEP file keeps them: an edge joins only the pieces that hold it on their boundary, not
+/// one that holds it inside (an INTERNAL edge, which the file drops).
+pub fn written_sets(fused: &Fused, keep: &[bool]) -> Vec<Vec<usize>> {
+    sets_joined(fused, keep, true)
+}
+
+fn sets_joined(fused: &Fused, keep: &[bool], boundary_only: bool) -> Vec<Vec<usize>> {
     let n = fused.faces.len();
     let mut parent: Vec<usize> = (0..n).collect();
     for edge in &fused.edges {
-        let kept: Vec<usize> = edge.faces.iter().copied().filter(|&f| keep[f]).collect();
+        let joins = |f: usize| keep[f] && !(boundary_only && edge.inside.contains(&f));
+        let kept: Vec<usize> = edge.faces.iter().copied().filter(|&f| joins(f)).collect();
         for w in kept.windows(2) {
             union(&mut parent, w[0], w[1]);
         }

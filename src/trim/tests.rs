@@ -15,7 +15,12 @@ fn face(patch: usize, area: f64, edges: Vec<usize>) -> FusedFace {
 }
 
 fn edge(faces: Vec<usize>, a: DVec3, b: DVec3) -> FusedEdge {
-    FusedEdge { length: a.distance(b), faces, points: (0..5).map(|k| a.lerp(b, k as f64 / 4.0)).collect() }
+    FusedEdge {
+        length: a.distance(b),
+        faces,
+        points: (0..5).map(|k| a.lerp(b, k as f64 / 4.0)).collect(),
+        inside: Vec::new(),
+    }
 }
 
 /// An L corner in the x-z section, 40 deep in y: the bottom patch (z = 1, x 0..60) crossed by the wall
@@ -180,6 +185,17 @@ fn kept_pieces_group_into_shells() {
     let fused = l_corner();
     assert_eq!(connected_sets(&fused, &[true, false, true, false]), vec![vec![0, 2]]);
     assert_eq!(connected_sets(&fused, &[true, false, false, true]), vec![vec![0, 3]]);
+}
+
+#[test]
+fn an_edge_inside_a_piece_joins_it_to_nothing_once_written() {
+    // The crossing held inside piece 0 (a joint that ended inside it): connected, yet apart once written.
+    let mut fused = l_corner();
+    fused.edges[0].inside = vec![0];
+    let keep = [true, false, true, false];
+    assert_eq!(connected_sets(&fused, &keep), vec![vec![0, 2]]);
+    assert_eq!(written_sets(&fused, &keep), vec![vec![0], vec![2]]);
+    assert_eq!(written_sets(&fused, &[true, true, true, false]), vec![vec![0], vec![1, 2]]);
 }
 
 #[test]

@@ -6,7 +6,7 @@ from typing import Any
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.GCPnts import GCPnts_AbscissaPoint
-from OCP.TopAbs import TopAbs_EDGE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Shape
 
@@ -21,14 +21,17 @@ def describe(fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int]
     """The reply's `faces` (face_map: the faces of F; patch_of: the patch of each) and `edges`."""
     edge_map = indexed_map(fused, TopAbs_EDGE)
     edge_faces: list[list[int]] = [[] for _ in range(edge_map.Size())]
+    edge_inside: list[list[int]] = [[] for _ in range(edge_map.Size())]
     faces = []
     for i in range(face_map.Size()):
         face = TopoDS.Face(face_map.FindKey(i + 1))
-        edges, seams = _face_edges(face, edge_map)
+        edges, seams, inside = _face_edges(face, edge_map)
         for e in edges:
             edge_faces[e].append(i)
             if e in seams:
                 edge_faces[e].append(i)  # a seam joins the face to itself
+            if e in inside:
+                edge_inside[e].append(i)
         try:
             faces.append({"patch": patch_of[i], **measure(face), "edges": edges})
         except Exception as exc:
@@ -36,33 +39,40 @@ def describe(fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int]
     edges_json = []
     for e in range(edge_map.Size()):
         try:
-            edges_json.append(_describe_edge(TopoDS.Edge(edge_map.FindKey(e + 1)), edge_faces[e]))
+            edges_json.append(_describe_edge(TopoDS.Edge(edge_map.FindKey(e + 1)), edge_faces[e], edge_inside[e]))
         except Exception as exc:
             raise KernelError(f"fused edge {e} (faces {edge_faces[e]}): {one_line(exc)}") from exc
     return {"faces": faces, "edges": edges_json}
 
 
-def _face_edges(face: TopoDS_Shape, edge_map: IndexedShapeMap) -> tuple[list[int], set[int]]:
-    """(edge indices of the face in explorer order, a seam once; the seams). A seam is an edge the face uses
-    twice (once each way). Not BRep_Tool.IsClosed: a piece of a split tube keeps both pcurves on the old seam
-    edge although it uses it once, where it is a boundary like any other."""
+def _face_edges(face: TopoDS_Shape, edge_map: IndexedShapeMap) -> tuple[list[int], set[int], set[int]]:
+    """(edge indices of the face in explorer order, a seam once; the seams; the edges inside it). A seam is an
+    edge the face uses twice (once each way). Not BRep_Tool.IsClosed: a piece of a split tube keeps both pcurves
+    on the old seam edge although it uses it once, where it is a boundary like any other. An edge inside the
+    face (INTERNAL or EXTERNAL) bounds nothing: a joint that ended inside the face without splitting it."""
     uses: dict[int, int] = {}
+    inside: set[int] = set()
     explorer = TopExp_Explorer(face, TopAbs_EDGE)
     while explorer.More():
-        e = edge_map.FindIndex(explorer.Current()) - 1
+        edge = explorer.Current()
+        e = edge_map.FindIndex(edge) - 1
         uses[e] = uses.get(e, 0) + 1
+        if edge.Orientation() not in (TopAbs_FORWARD, TopAbs_REVERSED):
+            inside.add(e)
         explorer.Next()
-    return list(uses), {e for e, n in uses.items() if n > 1}
+    return list(uses), {e for e, n in uses.items() if n > 1}, inside
 
 
-def _describe_edge(edge: TopoDS_Edge, faces: list[int]) -> dict[str, Any]:
+def _describe_edge(edge: TopoDS_Edge, faces: list[int], inside: list[int]) -> dict[str, Any]:
+    """Length, faces and points of the edge; `inside` (only when some face holds it inside) the faces that do."""
+    extra = {"inside": inside} if inside else {}
     if BRep_Tool.Degenerated_s(edge):
         # No 3D curve: the edge is its vertex.
         point = list(xyz(BRep_Tool.Pnt_s(TopExp.FirstVertex_s(edge))))
-        return {"length": 0.0, "faces": faces, "points": [point] * EDGE_POINTS}
+        return {"length": 0.0, "faces": faces, "points": [point] * EDGE_POINTS, **extra}
     curve = BRepAdaptor_Curve(edge)
     first, last = curve.FirstParameter(), curve.LastParameter()
     step = (last - first) / (EDGE_POINTS - 1)
     points = [list(xyz(curve.Value(first + k * step))) for k in range(EDGE_POINTS - 1)]
     points.append(list(xyz(curve.Value(last))))
-    return {"length": GCPnts_AbscissaPoint.Length_s(curve), "faces": faces, "points": points}
+    return {"length": GCPnts_AbscissaPoint.Length_s(curve), "faces": faces, "points": points, **extra}
