@@ -327,3 +327,21 @@ def test_the_faces_a_merge_hands_back_keep_their_orientation():
     pieces = {0: [left], 1: [right], 2: [apart]}
     shells._merge(pieces, [[0, 1]], 1e-6)
     assert len(pieces[2]) == 1 and pieces[2][0].Orientation() == apart.Orientation()
+
+
+def test_a_wall_whose_foot_ends_inside_a_plate_stays_joined_once_written(client, tmp_path):
+    # The wall's foot (x = 30, y 10..30) lies inside the plate, which holds it as an INTERNAL edge: a STEP file
+    # drops that, and the wall would be joined to nothing. The plate is split along the foot carried on to its
+    # boundary (x = 30, y 0..40), so the foot joins three faces.
+    strip = rectangle((30, 10, 1), (30, 30, 1), (30, 30, 40), (30, 10, 40))
+    f = fused(client, horizontal(), strip)
+    plate = [i for i, face in enumerate(f["faces"]) if face["patch"] == 0]
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[list(range(len(f["faces"])))])
+    assert ok["valid"] is True and ok["components"] == 1
+    assert ok["faces"].count(plate[0]) == 2, "the plate is written as its two pieces"
+    path = tmp_path / "foot.step"
+    client.ok("write_step", path=str(path), handle=ok["handle"], faces=[])
+    back = read_step(path)
+    assert sorted(round(a) for a in face_areas(back)) == [780, 1200, 1200]
+    assert edge_components(back) == 1
+    assert faces_per_edge(back).count(3) == 1

@@ -1,17 +1,22 @@
 """`make_shells`: shells assembled from faces of a fused shape (BRep_Builder, so shared edges stay shared and
 non-manifold edges are allowed), gathered in one compound: the shape written as the mid-surface."""
 
+import math
 from collections import deque
 from typing import Any
 
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy, BRepBuilderAPI_MakeEdge
 from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepAdaptor import BRepAdaptor_Curve2d
+from OCP.BRepLib import BRepLib
 from OCP.BRepTools import BRepTools
+from OCP.Geom2d import Geom2d_Line
+from OCP.gp import gp_Dir2d, gp_Pnt2d, gp_Vec2d
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Iterator, TopoDS_Shape, TopoDS_Shell
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Shell
 from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
@@ -183,20 +188,43 @@ def _group_edges(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]])
 
 def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dict[int, list[TopoDS_Shape]]:
     """The faces standing for each listed face: its pieces when split, else itself. The faces closed on
-    themselves are split with all the listed faces at once, so the edges they share split alike (a neighbour
-    whose shared edge was split is rebuilt, Modified); nothing is split when none is closed or OCCT gives up
-    (the seams stay)."""
+    themselves are split at their seams and the faces holding a joint inside them along it (inside_cuts), with
+    all the listed faces at once, so the edges they share split alike (a neighbour whose shared edge was split is
+    rebuilt, Modified). The joints' cuts are given up when a piece they make fails BRepCheck (a broken face is
+    worse than a joint left open); nothing is split when OCCT gives up (the seams stay)."""
     unsplit = {i: [face_map.FindKey(i + 1)] for i in face_ids}
-    tools = closing_isolines([faces[0] for faces in unsplit.values()])
-    if not tools:
+    listed = [faces[0] for faces in unsplit.values()]
+    seams = closing_isolines(listed)
+    cuts = {i: inside_cuts([faces[0]]) for i, faces in unsplit.items()}
+    # At most two tries with cuts: all of them, then without those of the faces whose pieces came out broken.
+    for _ in range(2):
+        tools = [tool for i in sorted(cuts) for tool in cuts[i]]
+        if not tools:
+            break
+        pieces = _split_pieces(unsplit, seams + tools, fuzzy)
+        if pieces is None:
+            break
+        broken = {i for i, faces in pieces.items() if not all(BRepCheck_Analyzer(f).IsValid() for f in faces)}
+        if not broken:
+            return pieces
+        cuts = {i: c for i, c in cuts.items() if i not in broken}
+    if not seams:
         return unsplit
+    return _split_pieces(unsplit, seams, fuzzy) or unsplit
+
+
+def _split_pieces(
+    unsplit: dict[int, list[TopoDS_Shape]], tools: list[TopoDS_Shape], fuzzy: float
+) -> dict[int, list[TopoDS_Shape]] | None:
+    """The listed faces split by `tools` all at once, each as its pieces (itself when not split); None when OCCT
+    gives up or the pieces cannot be traced back to the faces."""
     kept, builder = TopoDS_Compound(), BRep_Builder()
     builder.MakeCompound(kept)
     for faces in unsplit.values():
         builder.Add(kept, faces[0])
     splitter = split(kept, tools, fuzzy)
     if splitter is None:
-        return unsplit
+        return None
     # Listing an empty Modified() costs as much as a split face's (KERNEL_NOTES): ask its size first.
     pieces = {}
     for i, faces in unsplit.items():
@@ -206,8 +234,47 @@ def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dic
     result = indexed_map(splitter.Shape(), TopAbs_FACE)
     taken = [f for faces in pieces.values() for f in faces]
     if len(taken) != result.Size() or any(result.FindIndex(f) == 0 for f in taken):
-        return unsplit
+        return None
     return pieces
+
+
+def inside_cuts(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
+    """A joint that ended inside a face without splitting it (a wall's foot stopping short of the face's
+    boundary) left an INTERNAL edge in that face, which a STEP file drops: the wall is joined to nothing once
+    written, its foot a free edge. Such an edge is carried on from both ends, straight in the face's parameters
+    along its end tangents, to the face's boundary (clipped to the face), and the face is split along the path:
+    the foot becomes a boundary edge, shared with the wall as any T-joint's."""
+    tools = []
+    for shape in faces:
+        face = TopoDS.Face(shape)
+        explorer = TopExp_Explorer(face, TopAbs_EDGE)
+        while explorer.More():
+            edge = explorer.Current()
+            explorer.Next()
+            if edge.Orientation() in (TopAbs_FORWARD, TopAbs_REVERSED) or BRep_Tool.Degenerated_s(TopoDS.Edge(edge)):
+                continue
+            tools.extend(_carried_on(TopoDS.Edge(edge), face))
+    return tools
+
+
+def _carried_on(edge: TopoDS_Edge, face: TopoDS_Face) -> list[TopoDS_Shape]:
+    """The two straight (in the face's parameters) continuations of `edge` past its ends, clipped to `face`."""
+    surface = BRep_Tool.Surface_s(face)
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    reach = math.hypot(u1 - u0, v1 - v0)
+    curve = BRepAdaptor_Curve2d(edge, face)
+    tools = []
+    for at, sense in ((curve.FirstParameter(), -1.0), (curve.LastParameter(), 1.0)):
+        point, tangent = gp_Pnt2d(), gp_Vec2d()
+        curve.D1(at, point, tangent)
+        if tangent.Magnitude() <= CONFUSION:
+            continue
+        maker = BRepBuilderAPI_MakeEdge(Geom2d_Line(point, gp_Dir2d(tangent.Multiplied(sense))), surface, 0.0, reach)
+        if maker.IsDone():
+            carried = maker.Edge()
+            BRepLib.BuildCurves3d_s(carried)
+            tools.extend(within(carried, face))
+    return tools
 
 
 def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
