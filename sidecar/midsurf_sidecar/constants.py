@@ -116,6 +116,9 @@ FULL_TURN = 1e-9
 # the shape's extent: the reader's healing may rebuild a broken face a little differently (its wires, its
 # pcurves), so not to round-off.
 READBACK_MATCH = 1e-3
+# A face's box coordinate beyond this (mm) is an unbounded face's, not a part's: OCCT boxes infinite surfaces at
+# 1e100. Such boxes are left out of the size that scales READBACK_MATCH.
+UNBOUNDED_BOX = 1e12
 # The STEP header's FILE_NAME carries the time of writing: fixed, so equal requests give equal bytes.
 FIXED_TIME_STAMP = "1970-01-01T00:00:00"
 # Chordal deflection of the glTF preview's mesh, as a share of the part's diagonal (smooth enough to look at,

@@ -22,8 +22,8 @@ const OWN_WALL_FACTOR: f64 = 2.0;
 /// An island of pieces (joined to no other) smaller than a square this many times its thickness wide is a
 /// fragment (a sliver left where patches cross, a scrap cut off by the joints), not a wall: a shell element is no
 /// smaller than the wall is thick, so it would hold at most four, joined to nothing; a floating fragment in a
-/// crash model only flies off. The smallest wall a thin-walled solid can have is 5 t wide (its thickness is at
-/// most a fifth of its extent), so no whole wall is this small.
+/// crash model only flies off. A thin-walled solid is at least 5 t across (its thickness is at most a fifth of
+/// its extent), so no whole solid's mid-surface is this small.
 const FRAGMENT_SIDE: f64 = 2.0;
 /// Share of a piece's boundary that must be free for it to dangle: an overshoot strip has one long side free
 /// (about half its boundary); a piece held on two sides has at most its short ends free.
@@ -68,10 +68,9 @@ pub(super) fn dangling(fused: &Fused, keep: &[bool], patches: &[PatchInfo], soli
         peeled.extend(round);
     }
     // An island of narrow pieces none of which lies in its own wall (cut off by the rounds, or made so) is no
-    // wall's mid-surface, even the largest piece of its patch. Nor is an island smaller than a square twice as
-    // wide as its wall is thick, wherever it lies (`FRAGMENT_SIDE`).
-    // Islands as the file will hold them: a piece joined to the rest only through an edge inside another piece
-    // (a joint that ended inside a face without splitting it) is alone once written.
+    // wall's mid-surface, even the largest piece of its patch; nor is an island smaller than a square twice as
+    // wide as its wall is thick, wherever it lies (`FRAGMENT_SIDE`). Islands are taken as the file will hold
+    // them (`written_sets`): a piece joined to the rest only through an edge inside another piece is alone.
     for set in written_sets(fused, &kept) {
         let area: f64 = set.iter().map(|&f| fused.faces[f].area).sum();
         let thickness = set.iter().map(|&f| patches[fused.faces[f].patch].thickness).fold(0.0, f64::max);

@@ -6,13 +6,13 @@ from typing import Any
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.GCPnts import GCPnts_AbscissaPoint
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED
+from OCP.TopAbs import TopAbs_EDGE
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Shape
 
 from ..constants import EDGE_POINTS
 from ..geom.face_measure import measure
-from ..geom.topology import IndexedShapeMap, indexed_map
+from ..geom.topology import IndexedShapeMap, bounds_face, indexed_map
 from ..geom.vectors import xyz
 from ..protocol.errors import KernelError, one_line
 
@@ -57,7 +57,7 @@ def _face_edges(face: TopoDS_Shape, edge_map: IndexedShapeMap) -> tuple[list[int
         edge = explorer.Current()
         e = edge_map.FindIndex(edge) - 1
         uses[e] = uses.get(e, 0) + 1
-        if edge.Orientation() not in (TopAbs_FORWARD, TopAbs_REVERSED):
+        if not bounds_face(edge):
             inside.add(e)
         explorer.Next()
     return list(uses), {e for e, n in uses.items() if n > 1}, inside

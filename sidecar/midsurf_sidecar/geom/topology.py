@@ -12,7 +12,7 @@ from OCP.BRepTools import BRepTools
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as AncestorMap
 from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedShapeMap
 from OCP.GProp import GProp_GProps
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_WIRE, TopAbs_ShapeEnum
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE, TopAbs_ShapeEnum
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
 from OCP.gp import gp_Pnt
@@ -67,6 +67,17 @@ def boundary_length(shape: TopoDS_Shape) -> float:
     props = GProp_GProps()
     BRepGProp.LinearProperties_s(shape, props)
     return props.Mass()
+
+
+def bounds_face(edge: TopoDS_Shape) -> bool:
+    """Whether an edge, as met exploring a face, is on the face's boundary (FORWARD or REVERSED), not inside it
+    (INTERNAL or EXTERNAL: a joint that ended inside the face without splitting it, which a STEP file drops)."""
+    return edge.Orientation() in (TopAbs_FORWARD, TopAbs_REVERSED)
+
+
+def bounded(face: TopoDS_Shape) -> bool:
+    """Whether a face has a wire: one without stands for its whole, unbounded surface."""
+    return TopExp_Explorer(face, TopAbs_WIRE).More()
 
 
 def subshapes(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> list[TopoDS_Shape]:

@@ -17,11 +17,11 @@ from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.gp import gp_Pnt
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
-from OCP.TopAbs import TopAbs_FACE, TopAbs_SHELL, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_FACE, TopAbs_SHELL
 from OCP.TopoDS import TopoDS_Shape
 
-from ..constants import READBACK_MATCH
-from ..geom.topology import curve_edges, indexed_map, subshapes
+from ..constants import READBACK_MATCH, UNBOUNDED_BOX
+from ..geom.topology import bounded, curve_edges, indexed_map, subshapes
 
 
 @dataclass(frozen=True)
@@ -48,21 +48,23 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
     reader.TransferRoots()
     back = reader.OneShape()
     own = indexed_map(shape, TopAbs_FACE)
-    unbounded = {j for j in range(own.Size()) if not _bounded(own.FindKey(j + 1))}
+    unbounded = {j for j in range(own.Size()) if not bounded(own.FindKey(j + 1))}
     back_faces = subshapes(back, TopAbs_FACE)
-    if not unbounded and all(map(_bounded, back_faces)) and BRepCheck_Analyzer(back).IsValid():
+    if not unbounded and all(map(bounded, back_faces)) and BRepCheck_Analyzer(back).IsValid():
         return Check(True, [])
-    bad = [k for k, face in enumerate(back_faces) if not _bounded(face) or not BRepCheck_Analyzer(face).IsValid()]
-    lost = _lost_faces(back, shape, own) | unbounded
-    dropped = max(len(lost - unbounded), own.Size() - len(back_faces), 0)
-    unnamed = max(dropped - len(lost - unbounded), 0)
+    bad = [k for k, face in enumerate(back_faces) if not bounded(face) or not BRepCheck_Analyzer(face).IsValid()]
+    read_empty = _lost_faces(back, shape, own)
+    dropped = max(len(read_empty), own.Size() - len(back_faces), 0)
+    unnamed = dropped - len(read_empty)
+    lost = read_empty | unbounded
     if len(back_faces) == own.Size():
         # Manifold shells read back as written, face for face in the same order; a broken face's area and
         # centroid cannot be trusted to find it.
         return Check(False, sorted(set(bad) | lost), dropped, unnamed)
     written = [own.FindKey(j + 1) for j in range(own.Size())]
     boxes = [_box(face) for face in written]
-    size = max((max(abs(c) for c in box) for box in boxes if max(abs(c) for c in box) < UNBOUNDED), default=1.0)
+    extents = (max(abs(c) for c in box) for box in boxes)
+    size = max((e for e in extents if e < UNBOUNDED_BOX), default=1.0)
     reach = READBACK_MATCH * max(size, 1.0)
     invalid = set(lost)
     for k in bad:
@@ -70,14 +72,6 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
         if origin is not None:
             invalid.add(origin)
     return Check(False, sorted(invalid), dropped, unnamed)
-
-
-def _bounded(face: TopoDS_Shape) -> bool:
-    return bool(subshapes(face, TopAbs_WIRE))
-
-
-# A box coordinate beyond this (mm) is an unbounded face's, not a part's: OCCT boxes infinite surfaces at 1e100.
-UNBOUNDED = 1e12
 
 
 def _lost_faces(back: TopoDS_Shape, shape: TopoDS_Shape, own) -> set[int]:

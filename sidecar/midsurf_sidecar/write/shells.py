@@ -14,14 +14,14 @@ from OCP.BRepTools import BRepTools
 from OCP.Geom2d import Geom2d_Line
 from OCP.gp import gp_Dir2d, gp_Pnt2d, gp_Vec2d
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_VERTEX
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Shell
 from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
-from ..geom.topology import IndexedShapeMap, ancestors, indexed_map
+from ..geom.topology import IndexedShapeMap, ancestors, bounds_face, indexed_map, subshapes
 from ..protocol.errors import KernelError
 
 
@@ -195,7 +195,7 @@ def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dic
     unsplit = {i: [face_map.FindKey(i + 1)] for i in face_ids}
     listed = [faces[0] for faces in unsplit.values()]
     seams = closing_isolines(listed)
-    cuts = {i: inside_cuts([faces[0]]) for i, faces in unsplit.items()}
+    cuts = {i: inside_cuts(faces[0]) for i, faces in unsplit.items()}
     # At most two tries with cuts: all of them, then without those of the faces whose pieces came out broken.
     for _ in range(2):
         tools = [tool for i in sorted(cuts) for tool in cuts[i]]
@@ -238,21 +238,16 @@ def _split_pieces(
     return pieces
 
 
-def inside_cuts(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
+def inside_cuts(shape: TopoDS_Shape) -> list[TopoDS_Shape]:
     """A joint that ended inside a face without splitting it (a wall's foot stopping short of the face's
     boundary) left an INTERNAL edge in that face, which a STEP file drops: the wall is joined to nothing once
     written, its foot a free edge. Such an edge is carried on from both ends, straight in the face's parameters
     along its end tangents, to the face's boundary (clipped to the face), and the face is split along the path:
-    the foot becomes a boundary edge, shared with the wall as any T-joint's."""
+    the foot becomes a boundary edge, shared with the wall as any T-joint's. Returns the cuts' edges."""
+    face = TopoDS.Face(shape)
     tools = []
-    for shape in faces:
-        face = TopoDS.Face(shape)
-        explorer = TopExp_Explorer(face, TopAbs_EDGE)
-        while explorer.More():
-            edge = explorer.Current()
-            explorer.Next()
-            if edge.Orientation() in (TopAbs_FORWARD, TopAbs_REVERSED) or BRep_Tool.Degenerated_s(TopoDS.Edge(edge)):
-                continue
+    for edge in subshapes(face, TopAbs_EDGE):
+        if not bounds_face(edge) and not BRep_Tool.Degenerated_s(TopoDS.Edge(edge)):
             tools.extend(_carried_on(TopoDS.Edge(edge), face))
     return tools
 
@@ -319,7 +314,7 @@ def _edge_connected(faces: list[TopoDS_Shape]) -> list[list[TopoDS_Shape]]:
         explorer = TopExp_Explorer(face, TopAbs_EDGE)
         while explorer.More():
             edge = explorer.Current()
-            boundary = edge.Orientation() in (TopAbs_FORWARD, TopAbs_REVERSED)
+            boundary = bounds_face(edge)
             if boundary and not BRep_Tool.Degenerated_s(TopoDS.Edge(edge)):
                 j = first_face.setdefault(edge_index.Add(edge), i)
                 a, b = root(i), root(j)
@@ -346,7 +341,7 @@ def _manifold(faces: list[TopoDS_Shape]) -> list[list[TopoDS_Shape]]:
         explorer = TopExp_Explorer(face, TopAbs_EDGE)
         while explorer.More():
             edge = explorer.Current()
-            if edge.Orientation() in (TopAbs_FORWARD, TopAbs_REVERSED) and not BRep_Tool.Degenerated_s(TopoDS.Edge(edge)):
+            if bounds_face(edge) and not BRep_Tool.Degenerated_s(TopoDS.Edge(edge)):
                 mine.append((edge_index.Add(edge), edge.Orientation()))
             explorer.Next()
         uses.append(mine)
