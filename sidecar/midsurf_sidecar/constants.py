@@ -14,6 +14,9 @@ import math
 # exactly on a known surface, and the floor of a tolerance that comes in as 0 (a fuzzy value of 0 still needs the
 # kernel's own least tolerance to classify a point or merge coplanar faces).
 CONFUSION = 1e-7
+# OCCT's Precision::PConfusion(): the least difference of two parameters (of a curve, or of a face's UV) the
+# kernel tells apart; the tolerance of 2D curve intersections in a face's parameters.
+PARAMETRIC_CONFUSION = 1e-9
 # OCCT marks the ends of an unbounded curve (a line) with Precision::Infinite() (2e100); anything beyond this is
 # such a marker, not a parameter.
 INFINITE_PARAMETER = 1e100

@@ -9,9 +9,7 @@ from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy, BRepBuilderAPI_MakeEdge
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepAdaptor import BRepAdaptor_Curve2d
-from OCP.BRepLib import BRepLib
 from OCP.BRepTools import BRepTools
-from OCP.Geom2d import Geom2d_Line
 from OCP.gp import gp_Dir2d, gp_Pnt2d, gp_Vec2d
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_VERTEX
@@ -22,6 +20,7 @@ from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
 from ..geom.topology import IndexedShapeMap, ancestors, bounds_face, indexed_map, subshapes
+from ..geom.uv_lines import line_within
 from ..protocol.errors import KernelError
 
 
@@ -254,7 +253,6 @@ def inside_cuts(shape: TopoDS_Shape) -> list[TopoDS_Shape]:
 
 def _carried_on(edge: TopoDS_Edge, face: TopoDS_Face) -> list[TopoDS_Shape]:
     """The two straight (in the face's parameters) continuations of `edge` past its ends, clipped to `face`."""
-    surface = BRep_Tool.Surface_s(face)
     u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
     reach = math.hypot(u1 - u0, v1 - v0)
     curve = BRepAdaptor_Curve2d(edge, face)
@@ -262,13 +260,8 @@ def _carried_on(edge: TopoDS_Edge, face: TopoDS_Face) -> list[TopoDS_Shape]:
     for at, sense in ((curve.FirstParameter(), -1.0), (curve.LastParameter(), 1.0)):
         point, tangent = gp_Pnt2d(), gp_Vec2d()
         curve.D1(at, point, tangent)
-        if tangent.Magnitude() <= CONFUSION:
-            continue
-        maker = BRepBuilderAPI_MakeEdge(Geom2d_Line(point, gp_Dir2d(tangent.Multiplied(sense))), surface, 0.0, reach)
-        if maker.IsDone():
-            carried = maker.Edge()
-            BRepLib.BuildCurves3d_s(carried)
-            tools.extend(within(carried, face))
+        if tangent.Magnitude() > CONFUSION:
+            tools.extend(line_within(face, point, gp_Dir2d(tangent.Multiplied(sense)), reach))
     return tools
 
 
