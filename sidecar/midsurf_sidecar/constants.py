@@ -149,6 +149,10 @@ RAY_MEET_ITERATIONS = 20
 # turned about it), by more than HULL_MARGIN (mm: round-off of the intersector; the locator's tolerance is added).
 HULL_DIRECTIONS = 8
 HULL_MARGIN = 1e-6
+# A spline surface is sampled into at least this many points each way, span by span, to meet rays; a line's piece
+# across a span's box is lengthened to at least this (mm) each way. Both are GeomAPI_IntCS's own for a line.
+POLYHEDRON_MIN_SAMPLES = 20
+POLYGON_MIN_LENGTH = 1e-10
 # Outward directions (unit vectors) and lengths equal to this (relative) share make one straight sweep; also how far
 # an edge's ends may differ in v (relative to the sweep, at least 1 mm) and still be a circle of its cylinder.
 SWEEP_PARALLEL = 1e-6

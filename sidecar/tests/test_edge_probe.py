@@ -40,11 +40,19 @@ def test_a_ray_meets_a_swept_spline_strip_as_its_extrusion_surface_says():
         assert hits[0]["gap"] == pytest.approx(max(0.0, z - 10.0), abs=1e-6)
 
 
-def offset_spline_face():
-    """A doubly curved bicubic spline sheet (60 x 40, bulging 6 mm) offset by 1.5 mm: a freeform mid-patch."""
+def offset_spline_face(wavy=False):
+    """A doubly curved bicubic spline sheet (60 x 40, bulging 6 mm) offset by 1.5 mm: a freeform mid-patch.
+    `wavy`: rippled too (1 mm, 4 waves along x), so that its approximation takes several spans."""
+    import math
+
     from build123d import Face
 
-    grid = [[(x, y, 6.0 * ((x / 60.0) * (1 - x / 60.0) + 0.5 * (y / 40.0) ** 2)) for x in range(0, 61, 10)] for y in range(0, 41, 10)]
+    def z(x, y):
+        ripple = 1.0 * math.sin(x / 60.0 * 8 * math.pi) * math.cos(y / 40.0 * 2 * math.pi) if wavy else 0.0
+        return 6.0 * ((x / 60.0) * (1 - x / 60.0) + 0.5 * (y / 40.0) ** 2) + ripple
+
+    step = 2.5 if wavy else 10
+    grid = [[(x, y, z(x, y)) for x in _range(0, 60, step)] for y in _range(0, 40, step)]
     spline = Face.make_surface_from_array_of_points(grid).wrapped
     basis = BRep_Tool.Surface_s(spline)
     assert isinstance(basis, Geom_BSplineSurface)
@@ -105,6 +113,34 @@ def test_a_ray_the_pole_hull_rules_out_meets_nothing_on_the_exact_surface():
         elif not within:
             beside += 1
     assert skipped > beside
+
+
+def test_a_spline_sampled_once_meets_random_lines_as_intcs_does():
+    """The offset sheet's locator (a spline of many spans, each sampled on its own): random lines through its
+    box meet it where GeomAPI_IntCS finds, line by line."""
+    import random
+
+    from midsurf_sidecar.joints.edge_probe import RaySurface
+
+    ray_surface = RaySurface(offset_spline_face(wavy=True), reach=20.0)
+    locator, sampled = ray_surface.locator, ray_surface.sampled
+    assert locator is not None and len(sampled.spans) > 1
+    rng = random.Random(11)
+    met = 0
+    for _ in range(200):
+        origin = (rng.uniform(0, 60), rng.uniform(0, 40), rng.uniform(-5, 12))
+        direction = [rng.uniform(-1, 1) for _ in range(3)]
+        length = sum(c * c for c in direction) ** 0.5
+        line = Geom_Line(gp_Lin(gp_Pnt(*origin), gp_Dir(*(c / length for c in direction))))
+        reference = GeomAPI_IntCS(line, locator)
+        expected = sorted(reference.Parameters(k)[2] for k in range(1, reference.NbPoints() + 1))
+        assert sorted(w for _, _, w, _ in sampled.meet(line)) == pytest.approx(expected, abs=1e-9)
+        met += len(expected)
+    assert met >= 50
+
+
+def _range(start, stop, step):
+    return [start + k * step for k in range(int(round((stop - start) / step)) + 1)]
 
 
 def xyz_of(p):

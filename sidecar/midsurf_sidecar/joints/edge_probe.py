@@ -27,11 +27,20 @@ from OCP.Geom import (
     Geom_Surface,
     Geom_SurfaceOfLinearExtrusion,
 )
-from OCP.GeomAbs import GeomAbs_C1
+from OCP.GeomAbs import GeomAbs_C1, GeomAbs_C2
 from OCP.GeomConvert import GeomConvert, GeomConvert_ApproxSurface
 from OCP.GeomAPI import GeomAPI_IntCS
+from OCP.GeomAdaptor import GeomAdaptor_Curve, GeomAdaptor_Surface
 from OCP.gp import gp_Dir, gp_Lin, gp_Pnt, gp_Pnt2d, gp_Vec
+from OCP.IntCurveSurface import (
+    IntCurveSurface_HInter,
+    IntCurveSurface_ThePolygonOfHInter,
+    IntCurveSurface_ThePolyhedronOfHInter,
+)
 from OCP.IntTools import IntTools_FClass2d
+from OCP.Intf import Intf_Tool
+from OCP.collections import Array1_double
+from OCP.Adaptor3d import Adaptor3d_HSurfaceTool
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_IN, TopAbs_OUT, TopAbs_REVERSED, TopAbs_State, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
@@ -39,6 +48,8 @@ from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Wi
 from ..constants import (
     HULL_DIRECTIONS,
     HULL_MARGIN,
+    POLYGON_MIN_LENGTH,
+    POLYHEDRON_MIN_SAMPLES,
     RAY_APPROX_RATIO,
     RAY_MEET_ITERATIONS,
     RAY_MEET_RESIDUAL,
@@ -219,6 +230,52 @@ def _ray_frame(origin: Vec, direction: Vec):
     return numpy.array(origin), d, numpy.stack([e1, numpy.cross(d, e1)], axis=1)
 
 
+class SampledSpline:
+    """A B-spline surface with the polyhedra GeomAPI_IntCS samples it into for a line, made once. IntCS samples
+    the surface again for every line: each span between C2 breaks (the knots of an approximation of degree 9),
+    at least 20 x 20 points (up to 15 ms a ray on the offset patches of a freeform part), and an edge's rays all
+    meet the same few surfaces. The rest is IntCS's own way with a line (IntCurveSurface_Inter): the line
+    clipped to each polyhedron's box, and the meetings of the clipped segment with it refined on the surface."""
+
+    def __init__(self, spline: Geom_BSplineSurface) -> None:
+        whole = GeomAdaptor_Surface(spline)
+        us, vs = self._breaks(whole, True), self._breaks(whole, False)
+        # Each span with its own bounds, as IntCS bounds a meeting's refinement to the span it was found in.
+        self.spans = []
+        for u1, u2 in zip(us, us[1:]):
+            nu = max(Adaptor3d_HSurfaceTool.NbSamplesU_s(whole, u1, u2), POLYHEDRON_MIN_SAMPLES)
+            for v1, v2 in zip(vs, vs[1:]):
+                nv = max(Adaptor3d_HSurfaceTool.NbSamplesV_s(whole, v1, v2), POLYHEDRON_MIN_SAMPLES)
+                span = GeomAdaptor_Surface(spline, u1, u2, v1, v2)
+                self.spans.append((span, IntCurveSurface_ThePolyhedronOfHInter(span, nu, nv, u1, v1, u2, v2)))
+
+    @staticmethod
+    def _breaks(adaptor: GeomAdaptor_Surface, along_u: bool) -> list[float]:
+        count = adaptor.NbUIntervals(GeomAbs_C2) if along_u else adaptor.NbVIntervals(GeomAbs_C2)
+        breaks = Array1_double(1, count + 1)
+        (adaptor.UIntervals if along_u else adaptor.VIntervals)(breaks, GeomAbs_C2)
+        return [breaks.Value(k) for k in range(1, count + 2)]
+
+    def meet(self, line: Geom_Line) -> list[tuple[float, float, float, Vec]]:
+        """(u, v, w along the line, point) of each meeting of the whole line."""
+        curve = GeomAdaptor_Curve(line)
+        found = []
+        for span, polyhedron in self.spans:
+            clip = Intf_Tool()
+            clip.LinBox(line.Lin(), polyhedron.Bounding(), Bnd_Box())
+            for k in range(1, clip.NbSegments() + 1):
+                start, end = clip.BeginParam(k), clip.EndParam(k)
+                if end - start < POLYGON_MIN_LENGTH:
+                    start, end = start - POLYGON_MIN_LENGTH, end + POLYGON_MIN_LENGTH
+                intersector = IntCurveSurface_HInter()
+                polygon = IntCurveSurface_ThePolygonOfHInter(curve, start, end, 2)
+                intersector.Perform(curve, polygon, span, polyhedron)
+                for j in range(1, intersector.NbPoints() + 1):
+                    meeting = intersector.Point(j)
+                    found.append((meeting.U(), meeting.V(), meeting.W(), xyz(meeting.Pnt())))
+        return found
+
+
 class RaySurface:
     """A target face's support surface, in the form rays meet fastest (see `meetings`)."""
 
@@ -243,24 +300,27 @@ class RaySurface:
                 self.locator = approx.Surface()
         spline = self.locator or self.exact
         self.hull: PoleHull | None = None
+        self.sampled: SampledSpline | None = None
         if isinstance(spline, Geom_BSplineSurface):
             # The exact surface lies within twice the approximation's tolerance of its locator.
             margin = HULL_MARGIN + (2.0 * RAY_APPROX_RATIO * reach if self.locator is not None else 0.0)
             self.hull = PoleHull(spline, margin)
+            self.sampled = SampledSpline(spline)
 
     def meetings(self, line: Geom_Line, origin: Vec, direction: Vec, reach: float) -> list[Vec]:
         """Points where the ray's line meets the surface, all of them or at least those within (0, reach] along
-        the ray: none when the ray keeps clear of the spline's pole hull; on the locator (same parameters as the
-        exact surface), each settled on the exact surface; on the exact surface alone if there is no locator or
-        one fails."""
+        the ray: none when the ray keeps clear of the spline's pole hull; on a spline, through its sampling made
+        once (SampledSpline); on the locator (same parameters as the exact surface), each settled on the exact
+        surface; on the exact surface alone (GeomAPI_IntCS) if it is no spline, or a meeting fails to settle."""
         if self.hull is not None and self.hull.misses(origin, direction, reach):
             return []
-        if self.locator is not None:
-            meet = GeomAPI_IntCS(line, self.locator)
-            if meet.IsDone():
-                settled = [self._settle(*meet.Parameters(k), origin, direction) for k in range(1, meet.NbPoints() + 1)]
-                if all(p is not None for p in settled):
-                    return settled
+        met = self.sampled.meet(line) if self.sampled is not None else None
+        if met is not None and self.locator is not None:
+            settled = [self._settle(u, v, w, origin, direction) for u, v, w, _ in met]
+            if all(p is not None for p in settled):
+                return settled
+        elif met is not None:
+            return [point for _, _, _, point in met]
         meet = GeomAPI_IntCS(line, self.exact)
         if not meet.IsDone():
             return []
