@@ -41,13 +41,24 @@ pub struct RunArgs {
     pub t_band: f64,
 }
 
+/// How one run goes: its booleans on one thread (`serial_booleans`), and whether it stitches.
+#[derive(Debug, Clone, Copy)]
+struct Attempt {
+    serial_booleans: bool,
+    stitch: bool,
+}
+
 /// `run_once`, and once more when the kernel crashed after the file was read (the sidecar ended by a signal
 /// it raised itself, such as SIGSEGV, not one sent from outside): OCCT's booleans crash now and then on input
 /// they handle on the next try, and a crash takes every kernel handle with it, so the part starts afresh. The
 /// second run has the booleans on one thread: the crashes come from their threads (a part that crashed in
 /// two runs of three on two threads ran clean on one), and a serial boolean gives the same result.
+/// When the kernel hung while stitching (an op past its timeout), the part is run once more without
+/// stitching: the same input would hang the same way, and patches with open joints (said in a warning) are of
+/// more use than no file at all.
 pub fn run(args: &RunArgs) -> Result<Exit, Error> {
-    match run_once(args, false) {
+    let mut stage = Stage::Before;
+    match run_once(args, Attempt { serial_booleans: false, stitch: true }, &mut stage) {
         Err(Error::Sidecar { error: SidecarError::Died { op, stderr }, .. })
             if op != "load_step" && !killed_from_outside(&stderr) =>
         {
@@ -55,16 +66,33 @@ pub fn run(args: &RunArgs) -> Result<Exit, Error> {
                 "midsurf: the OCCT sidecar crashed during '{op}'; running {} once more, its booleans on one thread",
                 args.input.display()
             );
-            run_once(args, true)
+            run_once(args, Attempt { serial_booleans: true, stitch: true }, &mut stage)
+        }
+        Err(Error::Sidecar { error: SidecarError::Timeout { op, after, .. }, .. }) if stage == Stage::Stitch => {
+            eprintln!(
+                "midsurf: the OCCT sidecar hung in '{op}' while stitching (no answer in {} s); running {} once more \
+                 without stitching",
+                after.as_secs(),
+                args.input.display()
+            );
+            run_once(args, Attempt { serial_booleans: false, stitch: false }, &mut stage)
         }
         other => other,
     }
 }
 
-fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
+/// How far a run got: a kernel that hangs while stitching leaves a run without stitching to try.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Stage {
+    Before,
+    Stitch,
+    After,
+}
+
+fn run_once(args: &RunArgs, attempt: Attempt, stage: &mut Stage) -> Result<Exit, Error> {
     let (started, mut timings) = (Instant::now(), Timings::default());
     let files = Files::open(&args.input, &args.output, [&args.report, &args.summary, &args.csv, &args.preview])?;
-    let mut kernel = load::start_sidecar(&args.input, serial_booleans)?;
+    let mut kernel = load::start_sidecar(&args.input, attempt.serial_booleans)?;
     let failed = |error| Error::Sidecar { path: args.input.clone(), error };
     let since = |t: Instant| t.elapsed().as_secs_f64();
 
@@ -102,9 +130,15 @@ fn run_once(args: &RunArgs, serial_booleans: bool) -> Result<Exit, Error> {
     timings.trim = since(t);
 
     let t = Instant::now();
-    let mut stitched = stitch::stitch_part(&mut kernel, trimmed, &infos, &meshes, fuzzy).map_err(failed)?;
+    *stage = Stage::Stitch;
+    let mut stitched = if attempt.stitch {
+        stitch::stitch_part(&mut kernel, trimmed, &infos, &meshes, fuzzy).map_err(failed)?
+    } else {
+        stitch::unstitched(trimmed, "the kernel hung while stitching them in an earlier run")
+    };
     warnings.extend(stitched.warnings.iter().cloned());
     let assembled = shells::make_shells(&mut kernel, &stitched, fuzzy).map_err(failed)?;
+    *stage = Stage::After;
     timings.stitch = since(t);
 
     let t = Instant::now();

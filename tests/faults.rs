@@ -168,3 +168,36 @@ fn a_kernel_crash_after_loading_is_tried_once_more_and_a_second_one_is_the_error
     assert!(stderr.contains("died during 'fuse'") && stderr.contains("SIGABRT"), "{stderr}");
     assert!(files.is_empty(), "{files:?}");
 }
+
+#[test]
+fn a_kernel_hung_while_stitching_gives_the_patches_unstitched_with_a_warning() {
+    // The sidecar hangs in its first probe of the free edges (a stitching op): past the op timeout the part
+    // is run once more without stitching, which never probes, and written with a `stitch_failed` warning.
+    let dir = scratch("fault-stitch-hang");
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    let output = Command::new(assert_cmd::cargo::cargo_bin("midsurf"))
+        .current_dir(root())
+        .env_clear()
+        .env("PATH", std::env::var_os("PATH").unwrap_or_default())
+        .env("MIDSURF_TEST_STALL", format!("probe_edges:{}", dir.join("stalled.pid").display()))
+        .env("MIDSURF_TIMEOUT_SECS", "20")
+        .args(["run", "fixtures/t_rib.step", "-o"])
+        .arg(out.join("mid.step"))
+        .arg("--report")
+        .arg(out.join("mid.json"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("hung in 'probe_edges' while stitching") && stderr.contains("without stitching"),
+        "{stderr}"
+    );
+    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("mid.json")).unwrap()).unwrap();
+    let codes: Vec<&str> = report["warnings"].as_array().unwrap().iter().map(|w| w["code"].as_str().unwrap()).collect();
+    assert!(codes.contains(&"stitch_failed"), "{codes:?}");
+    let mut files = files_in(&out);
+    files.sort();
+    assert_eq!(files, vec!["mid.json".to_string(), "mid.step".to_string()]);
+}

@@ -312,19 +312,23 @@ pub fn stitch_part<K: Kernel>(
             warnings.extend(open_edges_warning(&s.free, &s.open_patches));
             (s.fused, s.keep, s.joints, Some(s.free))
         }
-        Err(e) if e.code().is_some() => {
-            warnings.push(Warning {
-                code: "stitch_failed",
-                message: format!("the patches are written unstitched: {e}"),
-                solid: None,
-                faces: Vec::new(),
-            });
-            (fused, keep, Vec::new(), None)
-        }
+        Err(e) if e.code().is_some() => return Ok(unstitched(Trimmed { fused, keep, branches }, &e.to_string())),
         Err(e) => return Err(e),
     };
     warnings.extend(joint_warnings(&joints));
     Ok(Outcome { fused, keep, branches, joints, free, warnings })
+}
+
+/// The trimmed patches handed on as they are, with a `stitch_failed` warning saying `why`.
+pub fn unstitched(trimmed: Trimmed, why: &str) -> Outcome {
+    let Trimmed { fused, keep, branches } = trimmed;
+    let warnings = vec![Warning {
+        code: "stitch_failed",
+        message: format!("the patches are written unstitched: {why}"),
+        solid: None,
+        faces: Vec::new(),
+    }];
+    Outcome { fused, keep, branches, joints: Vec::new(), free: None, warnings }
 }
 
 fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
