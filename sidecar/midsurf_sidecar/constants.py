@@ -153,6 +153,9 @@ HULL_MARGIN = 1e-6
 # across a span's box is lengthened to at least this (mm) each way. Both are GeomAPI_IntCS's own for a line.
 POLYHEDRON_MIN_SAMPLES = 20
 POLYGON_MIN_LENGTH = 1e-10
+# A spline's samples are kept for the whole probe only up to this many points (about 20 MB); past it (a spline of
+# hundreds of spans), each ray samples it anew as IntCS does.
+POLYHEDRON_MAX_POINTS = 200_000
 # Outward directions (unit vectors) and lengths equal to this (relative) share make one straight sweep; also how far
 # an edge's ends may differ in v (relative to the sweep, at least 1 mm) and still be a circle of its cylinder.
 SWEEP_PARALLEL = 1e-6

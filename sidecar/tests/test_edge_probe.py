@@ -184,3 +184,16 @@ def test_the_outward_direction_points_off_the_face_at_every_edge_of_a_face_with_
                     assert BRepClass_FaceClassifier(face, point, 1e-7).State() == expected
                     checked += 1
     assert checked == 2 * 3 * (4 + 4 + 12 + 2)
+
+
+def test_a_spline_too_large_to_keep_sampled_is_met_ray_by_ray(monkeypatch):
+    from midsurf_sidecar.joints import edge_probe
+
+    monkeypatch.setattr(edge_probe, "POLYHEDRON_MAX_POINTS", 100)
+    face = offset_spline_face()
+    targets = TargetFaces({0: face}, reach=20.0)
+    assert targets.surfaces[0].sampled is None
+    origin, direction = (30.0, 20.0, 10.0), (0.0, 0.0, -1.0)
+    hits = targets.hits(origin, direction, 20.0, [0])
+    meet = GeomAPI_IntCS(Geom_Line(gp_Lin(gp_Pnt(*origin), gp_Dir(*direction))), BRep_Tool.Surface_s(face))
+    assert [h["distance"] for h in hits] == pytest.approx([10.0 - meet.Point(1).Z()], abs=1e-8)

@@ -49,6 +49,7 @@ from ..constants import (
     HULL_DIRECTIONS,
     HULL_MARGIN,
     POLYGON_MIN_LENGTH,
+    POLYHEDRON_MAX_POINTS,
     POLYHEDRON_MIN_SAMPLES,
     RAY_APPROX_RATIO,
     RAY_MEET_ITERATIONS,
@@ -237,17 +238,28 @@ class SampledSpline:
     meet the same few surfaces. The rest is IntCS's own way with a line (IntCurveSurface_Inter): the line
     clipped to each polyhedron's box, and the meetings of the clipped segment with it refined on the surface."""
 
-    def __init__(self, spline: Geom_BSplineSurface) -> None:
-        whole = GeomAdaptor_Surface(spline)
-        us, vs = self._breaks(whole, True), self._breaks(whole, False)
+    def __init__(self, spline: Geom_BSplineSurface, counts: list[tuple[float, float, int, float, float, int]]):
         # Each span with its own bounds, as IntCS bounds a meeting's refinement to the span it was found in.
         self.spans = []
+        for u1, u2, nu, v1, v2, nv in counts:
+            span = GeomAdaptor_Surface(spline, u1, u2, v1, v2)
+            self.spans.append((span, IntCurveSurface_ThePolyhedronOfHInter(span, nu, nv, u1, v1, u2, v2)))
+
+    @classmethod
+    def of(cls, spline: Geom_BSplineSurface) -> "SampledSpline | None":
+        """The spline sampled, or None when its samples would pass POLYHEDRON_MAX_POINTS (they are kept for the
+        whole probe: a spline of thousands of spans is met by IntCS ray by ray instead)."""
+        whole = GeomAdaptor_Surface(spline)
+        us, vs = cls._breaks(whole, True), cls._breaks(whole, False)
+        counts = []
         for u1, u2 in zip(us, us[1:]):
             nu = max(Adaptor3d_HSurfaceTool.NbSamplesU_s(whole, u1, u2), POLYHEDRON_MIN_SAMPLES)
             for v1, v2 in zip(vs, vs[1:]):
                 nv = max(Adaptor3d_HSurfaceTool.NbSamplesV_s(whole, v1, v2), POLYHEDRON_MIN_SAMPLES)
-                span = GeomAdaptor_Surface(spline, u1, u2, v1, v2)
-                self.spans.append((span, IntCurveSurface_ThePolyhedronOfHInter(span, nu, nv, u1, v1, u2, v2)))
+                counts.append((u1, u2, nu, v1, v2, nv))
+        if sum(nu * nv for _, _, nu, _, _, nv in counts) > POLYHEDRON_MAX_POINTS:
+            return None
+        return cls(spline, counts)
 
     @staticmethod
     def _breaks(adaptor: GeomAdaptor_Surface, along_u: bool) -> list[float]:
@@ -305,7 +317,7 @@ class RaySurface:
             # The exact surface lies within twice the approximation's tolerance of its locator.
             margin = HULL_MARGIN + (2.0 * RAY_APPROX_RATIO * reach if self.locator is not None else 0.0)
             self.hull = PoleHull(spline, margin)
-            self.sampled = SampledSpline(spline)
+            self.sampled = SampledSpline.of(spline)
 
     def meetings(self, line: Geom_Line, origin: Vec, direction: Vec, reach: float) -> list[Vec]:
         """Points where the ray's line meets the surface, all of them or at least those within (0, reach] along
