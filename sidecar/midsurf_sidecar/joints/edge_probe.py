@@ -326,13 +326,13 @@ class RaySurface:
         surface; on the exact surface alone (GeomAPI_IntCS) if it is no spline, or a meeting fails to settle."""
         if self.hull is not None and self.hull.misses(origin, direction, reach):
             return []
-        met = self.sampled.meet(line) if self.sampled is not None else None
-        if met is not None and self.locator is not None:
+        if self.sampled is not None:
+            met = self.sampled.meet(line)
+            if self.locator is None:
+                return [point for _, _, _, point in met]
             settled = [self._settle(u, v, w, origin, direction) for u, v, w, _ in met]
             if all(p is not None for p in settled):
                 return settled
-        elif met is not None:
-            return [point for _, _, _, point in met]
         meet = GeomAPI_IntCS(line, self.exact)
         if not meet.IsDone():
             return []

@@ -206,6 +206,8 @@ def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dic
         broken = {i for i, faces in pieces.items() if not all(BRepCheck_Analyzer(f).IsValid() for f in faces)}
         if not broken:
             return pieces
+        if not any(cuts[i] for i in broken if i in cuts):
+            break  # the broken faces had no cuts of their own: the same split again would break them again
         cuts = {i: c for i, c in cuts.items() if i not in broken}
     if not seams:
         return unsplit
