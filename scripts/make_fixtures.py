@@ -771,6 +771,24 @@ def bspline_shell_rib() -> Fixture:
     return Fixture(part, part.volume, 15, volume_rel_tol=1e-6)
 
 
+def bspline_shell_tapered() -> Fixture:
+    """A doubly curved wall over 100 x 60 whose thickness grows linearly from 1.5 at x = 0 to 3 at x = 100 (a
+    tapered blade, a cast web): the class of a freeform pair whose distance varies along it. Skins z = wave
+    -/+ t(x) / 2, lofted through sections every 10 mm of x (B-spline skins); the mid-surface is the `wave`
+    surface, the thickness a range.
+    Faces: 6 (two skins, two sides, two ends). Volume: the built solid's (about 60 x 100 x 2.25 over the hump).
+    """
+    def section(x: float) -> Wire:
+        half = 0.5 * (1.5 + 1.5 * x / 100)
+        bottom = Edge.make_spline([Vector(x, y, wave(x, y) - half) for y in range(0, 61, 5)])
+        top = Edge.make_spline([Vector(x, y, wave(x, y) + half) for y in range(60, -1, -5)])
+        sides = [Edge.make_line(bottom @ 1, top @ 0), Edge.make_line(top @ 1, bottom @ 0)]
+        return Wire([bottom, sides[0], top, sides[1]])
+
+    part = single_solid(Solid.make_loft([section(x) for x in range(0, 101, 10)]))
+    return Fixture(part, part.volume, 6, volume_rel_tol=1e-6)
+
+
 def rib_boss_bore() -> Fixture:
     """Plate 100 x 60 x 3 with a rib 3 thick and 13.5 high along y (x 48.5..51.5, z 3..16.5, the full 60), and a
     screw boss (outside R 4.5, bore R 2, z 3..14.5) on the axis (46.75, 30) that runs into the rib: the bore, cut
@@ -818,6 +836,7 @@ PARTS: list[Callable[[], Fixture]] = [
     cone_boss,
     bspline_shell,
     bspline_shell_rib,
+    bspline_shell_tapered,
     tube_oblique_end,
     tube_oblique_end_far_origins,
     channel_low_end,

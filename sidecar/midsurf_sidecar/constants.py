@@ -69,6 +69,25 @@ BESIDE_EDGE_STEPS = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
 
 # --- patch: offset, projection, clip ------------------------------------------------------------------------------
 
+# A tapered wall's patch (patch/mid_wall.py) moves the poles of its reference face's B-spline form: the form is
+# raised to this degree (cubic: the mid-points of a thickness varying smoothly) and split into at least as many
+# spans each way over the face as the first of these counts, so that a face whose own surface is simple (a plane
+# has four poles) can follow the thickness; a finer face keeps its own knots. When the moved face misses the
+# mid-points by more than MID_WALL_ACCURACY x the local thickness (a face curved tightly for the step: poles
+# moved along normals that turn within a span), the next count is tried, then the face is offset at the mean.
+MID_WALL_DEGREE = 3
+MID_WALL_SPANS = (8, 32)
+# 2% of the thickness off mid-wall: a fifth of what a mid-surface may be off (10%).
+MID_WALL_ACCURACY = 0.02
+# The moved face is checked at area samples about its diagonal over this many apart: a few hundred points.
+MID_WALL_CHECKS = 10
+# A pole's ray looks for the partner up to this many times the mean wall thickness: a taper's thickest end, not a
+# wall across the next gap.
+MID_WALL_REACH = 2.0
+# A tapered wall's plane is made this many mean thicknesses wider than its face each way: room for its joints to
+# grow into (a joint reaches 1.5 t_max), as a B-spline's own extent past its face gives.
+MID_WALL_ROOM = 2.0
+
 # An offset radius at or below this share of the original radius counts as collapsed onto the axis or centre
 # (OCCT would return a degenerate face it still calls valid).
 COLLAPSE_RATIO = 1e-6

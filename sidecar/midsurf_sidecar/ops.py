@@ -81,7 +81,9 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     # (a tenth of the wall) is left as it is (within_solid).
     negligible = RIM_SHARE * 2.0 * abs(offset) if offset is not None else 0.0
     options = mid_patch.Options(clip, reverse, _fill_edges(solid, args), solid, negligible)
-    if offset is not None:
+    if offset is not None and optional_bool(args, "mid_wall", False):
+        patch, faces, filled = mid_patch.mid_wall_patch(face_map, face_ids, offset, options)
+    elif offset is not None:
         patch, faces, filled = mid_patch.offset_patch(face_map, face_ids, offset, options)
     else:
         plane = require_object(args, "plane")

@@ -118,6 +118,10 @@ pub enum Request {
         /// Turn the new faces over (their normal then points into the source face's material).
         #[serde(skip_serializing_if = "std::ops::Not::not")]
         reverse: bool,
+        /// Each face goes halfway to its clip partners point by point (a tapered wall); `offset` is the step
+        /// where none lies across.
+        #[serde(skip_serializing_if = "std::ops::Not::not")]
+        mid_wall: bool,
         /// Solid edge ids of suppressed features: the inner loops of the faces holding them are filled first.
         #[serde(skip_serializing_if = "Vec::is_empty")]
         fill: Vec<usize>,

@@ -26,7 +26,8 @@ pub struct Tolerances {
     /// Fuzzy value for splitting patches where they cross: geometry closer than 1e-4 of the thickness limit is
     /// one, which absorbs offsetting round-off without merging anything a shell mesh could see.
     pub fuse: f64,
-    /// A freeform pair's distance may vary by this share of its mean thickness ("nearly constant").
+    /// A freeform pair's distance may vary by this share of its mean thickness ("nearly constant"); past it the
+    /// wall tapers (`FREEFORM_SPREAD`).
     pub freeform_spread: f64,
     /// Farthest a free edge of a patch grows to meet another patch: 1.5 t_max covers a T-joint's half wall
     /// plus a root fillet of up to a wall's thickness, and an L-joint's half wall plus overshoot.
@@ -47,13 +48,23 @@ impl Tolerances {
             parallel_angle: 0.5_f64.to_radians(),
             coaxial: t_max * 0.01,
             overlap_share: 0.10,
-            freeform_spread: 0.15,
+            freeform_spread: FREEFORM_SPREAD,
             fuse: t_max * 1e-4,
             joint_reach: t_max * 1.5,
             clip_narrow: t_max,
         }
     }
 }
+
+/// A freeform pair's distance may vary by this share of its mean and still count as one thickness ("nearly
+/// constant"). Past it the wall tapers, and pairs only when its skins face each other nearly everywhere.
+pub const FREEFORM_SPREAD: f64 = 0.15;
+
+/// A tapered freeform wall is offset at its mean thickness while its thickness varies by at most this share of
+/// the mean: the patch is then off mid-wall by at most a quarter of it, 7.5% of the wall, within the 10% a
+/// mid-surface may be off. Past it the patch follows the local mid-points (a moved B-spline, heavier for the
+/// joints than an offset of the face).
+pub const TAPER_SPREAD: f64 = 0.3;
 
 /// Default largest draft angle (degrees) when the user gives none: moulded parts rarely exceed 3 degrees.
 pub const DEFAULT_DRAFT_MAX_DEG: f64 = 3.0;

@@ -403,11 +403,17 @@ fn parallel_cones(
     Ok(Some(t))
 }
 
+/// A freeform pair whose distance varies by more than `Tolerances::freeform_spread` is a tapered wall when at
+/// least this share of the smaller face meets the other within the draft limit of opposite: a taper's skins
+/// face each other nearly everywhere, while two differently shaped faces (a wavy skin across a flat one) do
+/// only in patches.
+const TAPER_SHARE: f64 = 0.5;
+
 /// How the distance between two faces measured by rays may vary.
 enum Spread {
     /// Known exactly from the surfaces (concentric spheres, parallel cones): the rays only test the overlap.
     Exact(f64),
-    /// A freeform pair: nearly constant (`Tolerances::freeform_spread`).
+    /// A freeform pair: nearly constant (`Tolerances::freeform_spread`), or tapered (`TAPER_SHARE`).
     NearlyConstant,
     /// Drafted skins (rulings within twice the draft limit): the wall tapers, its range is reported.
     Tapered,
@@ -452,7 +458,9 @@ fn sampled_pair(
     };
     let thickness = match spread {
         Spread::Exact(t) => Thickness::uniform(t),
-        Spread::NearlyConstant if max - min > tol.freeform_spread * mean => {
+        // Past the spread a freeform wall tapers (a blade, a cast web): one wall still, when most of the smaller
+        // face lies across it within the draft limit of opposite (the rays' own test), as drafted planes do.
+        Spread::NearlyConstant if max - min > tol.freeform_spread * mean && share < TAPER_SHARE => {
             return Err(Rejection::Spread { min, max });
         }
         Spread::NearlyConstant | Spread::Tapered => Thickness { mean, min, max },

@@ -256,6 +256,20 @@ fn freeform_offset_sheets_pair_at_nearly_constant_distance() {
 }
 
 #[test]
+fn a_tapered_freeform_wall_pairs_with_its_thickness_as_a_range() {
+    // The wavy sheet's top skin rises from 1 to 2 above it along x (0.95 deg of taper): one wall, every point of
+    // the bottom facing the top, however much the distance varies.
+    let top = crate::synthetic::face(crate::model::face_graph::Surface::Bspline, 30, |u, v| {
+        let (x, y) = (60.0 * u, 40.0 * v);
+        let z = 1.0 + x / 60.0 + 2.0 * (x / 10.0).sin();
+        (DVec3::new(x, y, z), DVec3::new(-0.2 * (x / 10.0).cos() - 1.0 / 60.0, 0.0, 1.0).normalize())
+    });
+    let p = pair_of(vec![wavy(0.0, false), top]).unwrap();
+    assert_eq!(p.kind, PairKind::Freeform);
+    assert!(p.thickness.min < 1.1 && p.thickness.max > 1.85, "{:?}", p.thickness);
+}
+
+#[test]
 fn freeform_with_a_varying_gap_is_not_one_wall() {
     let flat_top = crate::synthetic::face(crate::model::face_graph::Surface::Bspline, 30, |u, v| {
         (DVec3::new(60.0 * u, 40.0 * v, 2.2), DVec3::Z)

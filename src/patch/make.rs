@@ -60,6 +60,7 @@ pub fn make_patches<K: Kernel>(
                     wall_max: sp.tolerances.t_max,
                 }),
                 reverse: plan.reverse,
+                mid_wall: plan.mid_wall,
                 fill: plan.fill.clone(),
             };
             match kernel.call::<MadePatch>(&request) {
@@ -104,9 +105,16 @@ fn plan_warning(solid: usize, note: PlanNote) -> Warning {
             solid: Some(solid),
             faces,
         },
-        PlanNote::ThicknessVaries { group, faces, thickness: t } => Warning {
+        PlanNote::ThicknessVaries { group, faces, thickness: t, mid_wall } => Warning {
             code: "thickness_varies",
-            message: format!("group {group}: the wall's thickness varies within its pairs {}", at_mean(t)),
+            message: if mid_wall {
+                format!(
+                    "group {group}: the wall tapers ({:.3}..{:.3}, mean {:.3}); the patch follows its mid-points",
+                    t.min, t.max, t.mean
+                )
+            } else {
+                format!("group {group}: the wall's thickness varies within its pairs {}", at_mean(t))
+            },
             solid: Some(solid),
             faces,
         },

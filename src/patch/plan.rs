@@ -11,6 +11,7 @@ use serde::Serialize;
 use crate::model::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
 use crate::model::params::Position;
 use crate::model::shapes::Placement;
+use crate::model::tolerance::TAPER_SPREAD;
 use crate::pairing::{Pair, PairKind, Pairing, Side, Thickness};
 use crate::patch::sides::top_sides;
 
@@ -34,6 +35,10 @@ pub struct PatchPlan {
     /// The clip keeps only what lies over the partners (a face's minor thickness level; see `shares`).
     #[serde(skip)]
     pub strict: bool,
+    /// The wall tapers: each point of the reference faces goes halfway to its partners, not all by the offset
+    /// (which stays the mean, where no partner lies across). See `follows_mid_wall`.
+    #[serde(skip)]
+    pub mid_wall: bool,
     /// From the patch to the middle of its wall along the patch normal (0 unless placed on a skin).
     #[serde(skip)]
     pub to_mid: f64,
@@ -109,8 +114,9 @@ fn levels_differ(per_face: &[(FaceId, Vec<&Pair>)]) -> bool {
 pub enum PlanNote {
     /// Both sides span a thickness step: offset at the mean.
     ThicknessStep { group: usize, faces: Vec<FaceId>, thickness: Thickness },
-    /// The wall's thickness varies within its pairs (a taper): offset at the mean.
-    ThicknessVaries { group: usize, faces: Vec<FaceId>, thickness: Thickness },
+    /// The wall's thickness varies within its pairs (a taper): offset at the mean, or (`mid_wall`) following
+    /// the local mid-points.
+    ThicknessVaries { group: usize, faces: Vec<FaceId>, thickness: Thickness, mid_wall: bool },
     /// Neither side is mostly covered by its partners: the patch overshoots the wall.
     PartialOverlap { group: usize, faces: Vec<FaceId>, coverage: f64 },
 }
@@ -126,6 +132,7 @@ fn choose_reference<'a>(
     graph: &FaceGraph,
     group: &crate::pairing::PairGroup,
     pairing: &'a Pairing,
+    position: Position,
 ) -> (Side, Vec<(FaceId, Vec<&'a Pair>)>, Option<PlanNote>) {
     let area = |side: usize| group.sides[side].iter().map(|&f| graph.faces[f].area).sum::<f64>();
     let coverage = |side: usize| (group.overlap_area / area(side)).min(1.0);
@@ -143,7 +150,10 @@ fn choose_reference<'a>(
         Some(if levels_differ(&candidates[chosen]) {
             PlanNote::ThicknessStep { group: id, faces, thickness }
         } else {
-            PlanNote::ThicknessVaries { group: id, faces, thickness }
+            let mid_wall = candidates[chosen]
+                .iter()
+                .any(|(_, pairs)| follows_mid_wall(offset_kind(group.kind, pairs), combined(pairs), position));
+            PlanNote::ThicknessVaries { group: id, faces, thickness, mid_wall }
         })
     } else if coverage(side) < MIN_COVERAGE {
         Some(PlanNote::PartialOverlap { group: group.id, faces: group.sides[side].clone(), coverage: coverage(side) })
@@ -167,7 +177,7 @@ pub fn plan_patches(
     let mut notes = Vec::new();
     let top = top_sides(graph, pairing);
     for group in &pairing.groups {
-        let (side, per_face, warning) = choose_reference(graph, group, pairing);
+        let (side, per_face, warning) = choose_reference(graph, group, pairing, position);
         if let Some(w) = warning {
             notes.push(w);
         }
@@ -186,9 +196,12 @@ pub fn plan_patches(
         for share in offset.into_iter().flat_map(|(face, pairs)| shares(graph, *face, pairs)) {
             let t = combined(&share.pairs);
             let partners = partners_of(share.face, &share.pairs);
+            let kind = offset_kind(group.kind, &share.pairs);
+            let mid_wall = follows_mid_wall(kind, t, position);
             let same = |p: &&mut PatchPlan| {
                 (p.thickness.mean - t.mean).abs() <= SAME_THICKNESS * p.thickness.mean
                     && p.strict == share.minor
+                    && p.mid_wall == mid_wall
                     && !p.faces.contains(&share.face)
             };
             match clustered.iter_mut().find(same) {
@@ -201,13 +214,14 @@ pub fn plan_patches(
                 }
                 None => clustered.push(PatchPlan {
                     group: group.id,
-                    kind: offset_kind(group.kind, &share.pairs),
+                    kind,
                     faces: vec![share.face],
                     placement: Placement::Offset(position.offset(t.mean, on_top)),
                     thickness: t,
                     partners: vec![partners],
                     exclude: vec![share.exclude],
                     strict: share.minor,
+                    mid_wall,
                     to_mid: position.to_mid(t.mean),
                     reverse: !on_top,
                     fill: Vec::new(),
@@ -218,6 +232,13 @@ pub fn plan_patches(
         plans.extend(clustered.into_iter().map(|plan| plan.with_fill(graph, fill)));
     }
     (plans, notes)
+}
+
+/// Whether a patch follows the local mid-points of its wall rather than an offset at the mean thickness: at
+/// mid-wall, for a freeform wall that tapers past `TAPER_SPREAD` (a blade, a cast web). Planar tapers go onto a bisector plane
+/// (`draft_plan`); on a skin the patch is the skin itself.
+fn follows_mid_wall(kind: PairKind, t: Thickness, position: Position) -> bool {
+    kind == PairKind::Freeform && position == Position::Mid && t.max - t.min > TAPER_SPREAD * t.mean
 }
 
 /// `pairs` in levels of thickness: sorted by mean thickness, each within `SAME_THICKNESS` of the one before.
@@ -362,6 +383,7 @@ fn draft_plan(
         partners: vec![partners_of(face, pairs)],
         exclude: vec![Vec::new()],
         strict: false,
+        mid_wall: false,
         to_mid: position.to_mid(thickness.mean),
         reverse: !reference_on_top,
         fill: Vec::new(),

@@ -83,6 +83,26 @@ fn two_levels_on_each_side() -> (FaceGraph, Pairing) {
 }
 
 #[test]
+fn a_tapered_freeform_wall_follows_its_mid_points() {
+    // One freeform pair measured at several spreads: past TAPER_SPREAD of the mean its patch follows the
+    // mid-points at mid-wall; on a skin, or tapering less, it is offset.
+    let g = synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0));
+    let mut pairing = detect(&g, &Tolerances::new(120.0, 3.0, 0.05), &[true; 6]);
+    pairing.groups[0].kind = PairKind::Freeform;
+    pairing.pairs[0].kind = PairKind::Freeform;
+    let mut mid_wall = |(min, max): (f64, f64), position: Position| {
+        pairing.pairs[0].thickness = Thickness { mean: 2.0, min, max };
+        let (plans, notes) = plan_patches(&g, &pairing, position, &[]);
+        let noted = notes.iter().any(|n| matches!(n, PlanNote::ThicknessVaries { mid_wall: true, .. }));
+        assert_eq!(noted, plans[0].mid_wall, "{notes:?}");
+        plans[0].mid_wall
+    };
+    assert!(mid_wall((1.5, 2.5), Position::Mid));
+    assert!(!mid_wall((1.5, 2.5), Position::Top));
+    assert!(!mid_wall((1.75, 2.25), Position::Mid));
+}
+
+#[test]
 fn a_tapered_wall_is_noted_as_varying_not_as_a_step() {
     // A plate whose one pair was measured 1.8 to 2.2 thick (a taper) is noted as varying; bottoms at two
     // heights under tops at two heights (neither side at one thickness) are a step between pairs.

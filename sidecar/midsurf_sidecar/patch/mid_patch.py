@@ -20,9 +20,11 @@ from ..protocol.errors import OpError, one_line
 from .face_clip import clip_to_partners, is_plane, within_solid
 from .face_offset import offset_face
 from .face_projection import project_face
+from .mid_wall import mid_wall_face
 from .wall_probe import WallProbe
 
-FaceMaker = Callable[[TopoDS_Face], TopoDS_Face]
+# Makes the new face of the k-th requested face.
+FaceMaker = Callable[[TopoDS_Face, int], TopoDS_Face]
 
 
 @dataclass(frozen=True)
@@ -61,13 +63,26 @@ class Options:
 def offset_patch(
     face_map: IndexedShapeMap, face_ids: list[int], distance: float, options: Options = Options()
 ) -> tuple[TopoDS_Compound, list, int]:
-    return _patch(face_map, face_ids, lambda face: offset_face(face, distance), options)
+    return _patch(face_map, face_ids, lambda face, _: offset_face(face, distance), options)
+
+
+def mid_wall_patch(
+    face_map: IndexedShapeMap, face_ids: list[int], distance: float, options: Options
+) -> tuple[TopoDS_Compound, list, int]:
+    """Each face moved half-way to its clip partners point by point (a tapered wall), or by `distance` (the
+    mean) where that cannot be done."""
+    partners = options.clip.partners if options.clip is not None else [[] for _ in face_ids]
+
+    def make(face: TopoDS_Face, k: int) -> TopoDS_Face:
+        return mid_wall_face(face, [TopoDS.Face(face_map.FindKey(p + 1)) for p in partners[k]], distance)
+
+    return _patch(face_map, face_ids, make, options)
 
 
 def projected_patch(
     face_map: IndexedShapeMap, face_ids: list[int], origin: Vec, normal: Vec, options: Options = Options()
 ) -> tuple[TopoDS_Compound, list, int]:
-    return _patch(face_map, face_ids, lambda face: project_face(face, origin, normal), options)
+    return _patch(face_map, face_ids, lambda face, _: project_face(face, origin, normal), options)
 
 
 def fill_loops(face: TopoDS_Face, edges: list[TopoDS_Shape]) -> tuple[TopoDS_Face, int]:
@@ -115,7 +130,7 @@ def _patch(
             if options.fill:
                 source, removed = fill_loops(source, options.fill)
                 filled += removed
-            new_faces = [make(source)]
+            new_faces = [make(source, k)]
             if clip is not None and clip.partners[k]:
                 partners = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.partners[k]]
                 exclude = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.exclude[k]]
