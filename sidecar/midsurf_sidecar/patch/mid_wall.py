@@ -11,11 +11,10 @@ B-spline form has other parameters; no partner found; mid-points missed even wit
 the kernel's check) the face is offset at the mean instead.
 """
 
-from OCP.BRep import BRep_Tool
+from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve2d, BRepAdaptor_Surface
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.BRepIntCurveSurface import BRepIntCurveSurface_Inter
 from OCP.BRepLib import BRepLib
 from OCP.BRepTools import BRepTools, BRepTools_WireExplorer
 from OCP.Geom import Geom_BSplineSurface, Geom_Line, Geom_RectangularTrimmedSurface
@@ -23,11 +22,12 @@ from OCP.GeomAbs import GeomAbs_BezierSurface, GeomAbs_BSplineSurface, GeomAbs_P
 from OCP.GeomAPI import GeomAPI_IntCS
 from OCP.GeomConvert import GeomConvert
 from OCP.GeomLProp import GeomLProp_SLProps
+from OCP.IntCurvesFace import IntCurvesFace_ShapeIntersector
 from OCP.ShapeFix import ShapeFix_Face
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
-from OCP.TopoDS import TopoDS, TopoDS_Face
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face
 from OCP.gp import gp_Dir, gp_Lin, gp_Pnt, gp_Vec
 
 from ..constants import (
@@ -98,20 +98,22 @@ class _Rays:
     surfaces run on)."""
 
     def __init__(self, partners: list[TopoDS_Face], reach: float):
-        self.partners = partners
         self.surfaces = [BRep_Tool.Surface_s(p) for p in partners]
         self.reach = reach
-        self.inter = BRepIntCurveSurface_Inter()
+        # Loaded once: the intersector keeps each face's classifier and bounding boxes for every ray.
+        compound = TopoDS_Compound()
+        builder = BRep_Builder()
+        builder.MakeCompound(compound)
+        for partner in partners:
+            builder.Add(compound, partner)
+        self.faces = IntCurvesFace_ShapeIntersector()
+        self.faces.Load(compound, CONFUSION)
 
     def nearest(self, origin: gp_Pnt, direction: gp_Dir) -> float | None:
-        line = gp_Lin(origin, direction)
-        hits = []
-        for partner in self.partners:
-            self.inter.Init(partner, line, CONFUSION)
-            while self.inter.More():
-                hits.append(self.inter.W())
-                self.inter.Next()
-        return self._first(hits)
+        self.faces.Perform(gp_Lin(origin, direction), CONFUSION, self.reach)
+        if not self.faces.IsDone():
+            return None
+        return self._first([self.faces.WParameter(k) for k in range(1, self.faces.NbPnt() + 1)])
 
     def nearest_surface(self, origin: gp_Pnt, direction: gp_Dir) -> float | None:
         ray = Geom_Line(origin, direction)
