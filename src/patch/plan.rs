@@ -132,7 +132,6 @@ fn choose_reference<'a>(
     graph: &FaceGraph,
     group: &crate::pairing::PairGroup,
     pairing: &'a Pairing,
-    position: Position,
 ) -> (Side, Vec<(FaceId, Vec<&'a Pair>)>, Option<PlanNote>) {
     let area = |side: usize| group.sides[side].iter().map(|&f| graph.faces[f].area).sum::<f64>();
     let coverage = |side: usize| (group.overlap_area / area(side)).min(1.0);
@@ -150,10 +149,8 @@ fn choose_reference<'a>(
         Some(if levels_differ(&candidates[chosen]) {
             PlanNote::ThicknessStep { group: id, faces, thickness }
         } else {
-            let mid_wall = candidates[chosen]
-                .iter()
-                .any(|(_, pairs)| follows_mid_wall(offset_kind(group.kind, pairs), combined(pairs), position));
-            PlanNote::ThicknessVaries { group: id, faces, thickness, mid_wall }
+            // Whether the patch follows the mid-points is known once it is planned (plan_patches).
+            PlanNote::ThicknessVaries { group: id, faces, thickness, mid_wall: false }
         })
     } else if coverage(side) < MIN_COVERAGE {
         Some(PlanNote::PartialOverlap { group: group.id, faces: group.sides[side].clone(), coverage: coverage(side) })
@@ -177,10 +174,7 @@ pub fn plan_patches(
     let mut notes = Vec::new();
     let top = top_sides(graph, pairing);
     for group in &pairing.groups {
-        let (side, per_face, warning) = choose_reference(graph, group, pairing, position);
-        if let Some(w) = warning {
-            notes.push(w);
-        }
+        let (side, per_face, mut warning) = choose_reference(graph, group, pairing);
         let on_top = top[group.id] == side;
         // A group is named by the kind of most overlap: a draft group may hold faces whose main pair is not two
         // planes (a corrugated freeform band beside its flat ends). Only the planar ones go onto a bisector;
@@ -229,14 +223,18 @@ pub fn plan_patches(
                 }),
             }
         }
+        if let Some(PlanNote::ThicknessVaries { mid_wall, .. }) = &mut warning {
+            *mid_wall = clustered.iter().any(|plan| plan.mid_wall);
+        }
+        notes.extend(warning);
         plans.extend(clustered.into_iter().map(|plan| plan.with_fill(graph, fill)));
     }
     (plans, notes)
 }
 
 /// Whether a patch follows the local mid-points of its wall rather than an offset at the mean thickness: at
-/// mid-wall, for a freeform wall that tapers past `TAPER_SPREAD` (a blade, a cast web). Planar tapers go onto a bisector plane
-/// (`draft_plan`); on a skin the patch is the skin itself.
+/// mid-wall, for a freeform wall that tapers past `TAPER_SPREAD` (a blade, a cast web). Planar tapers go onto a
+/// bisector plane (`draft_plan`); on a skin the patch is the skin itself.
 fn follows_mid_wall(kind: PairKind, t: Thickness, position: Position) -> bool {
     kind == PairKind::Freeform && position == Position::Mid && t.max - t.min > TAPER_SPREAD * t.mean
 }

@@ -24,7 +24,7 @@ from OCP.GeomConvert import GeomConvert
 from OCP.GeomLProp import GeomLProp_SLProps
 from OCP.IntCurvesFace import IntCurvesFace_ShapeIntersector
 from OCP.ShapeFix import ShapeFix_Face
-from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face
@@ -43,7 +43,7 @@ from ..constants import (
 )
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import area_samples
-from ..geom.topology import diagonal
+from ..geom.topology import diagonal, subshapes
 from .face_offset import offset_face
 
 MOVABLE_KINDS = (GeomAbs_BSplineSurface, GeomAbs_BezierSurface, GeomAbs_Plane)
@@ -234,6 +234,7 @@ def _face_on(spline: Geom_BSplineSurface, face: TopoDS_Face) -> TopoDS_Face | No
         explorer.Next()
         maker = BRepBuilderAPI_MakeWire()
         edges = BRepTools_WireExplorer(wire, forward)
+        rebuilt = 0
         while edges.More():
             edge = edges.Current()
             edges.Next()
@@ -245,7 +246,9 @@ def _face_on(spline: Geom_BSplineSurface, face: TopoDS_Face) -> TopoDS_Face | No
             new = BRepBuilderAPI_MakeEdge(curve, spline, span.FirstParameter(), span.LastParameter()).Edge()
             BRepLib.BuildCurves3d_s(new)
             maker.Add(TopoDS.Edge(new.Oriented(edge.Orientation())))
-        if not maker.IsDone():
+            rebuilt += 1
+        # BRepTools_WireExplorer skips the edges of a wire it cannot chain (a gap, a non-manifold vertex).
+        if not maker.IsDone() or rebuilt != len(subshapes(wire, TopAbs_EDGE)):
             return None
         wires.append((wire.IsSame(outer), maker.Wire()))
     wires.sort(key=lambda w: not w[0])
