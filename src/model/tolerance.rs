@@ -66,6 +66,10 @@ pub const FREEFORM_SPREAD: f64 = 0.15;
 /// joints than an offset of the face).
 pub const TAPER_SPREAD: f64 = 0.3;
 
+/// Two thicknesses closer than this share are one (the reference faces of a wall offset together, pairs that run
+/// on into each other grouped as one wall): gauges of one sheet differ by more.
+pub const SAME_THICKNESS: f64 = 0.01;
+
 /// Default largest draft angle (degrees) when the user gives none: moulded parts rarely exceed 3 degrees.
 pub const DEFAULT_DRAFT_MAX_DEG: f64 = 3.0;
 

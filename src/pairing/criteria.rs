@@ -28,7 +28,47 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
     let limit =
         if tol.t_bound > tol.t_max { wall_limit(tol, [graph.face_width(a), graph.face_width(b)]) } else { tol.t_max };
     let tol = &Tolerances { t_max: limit, ..*tol };
-    let (kind, thickness, overlap_area) = match (&fa.surface, &fb.surface) {
+    let (kind, thickness, overlap_area) = match analytic(fa, fb, tol) {
+        Err(rejection) if measurable(fa, fb, &rejection) => {
+            // Faces the rays cannot see across say no more than their parameters did.
+            let measured = match sampled_pair(fa, fb, PairKind::Freeform, Spread::NearlyConstant, tol) {
+                Err(Rejection::NotFacing) | Err(Rejection::Overlap { share: 0.0, .. }) => return Err(rejection),
+                other => other?,
+            };
+            let share = measured.2 / fa.area.min(fb.area);
+            if share < TAPER_SHARE {
+                return Err(Rejection::Overlap { share, limit: TAPER_SHARE });
+            }
+            let width = graph.face_width(a).min(graph.face_width(b));
+            if width < measured.1.mean {
+                return Err(Rejection::Stub { width, thickness: measured.1.mean, top: false });
+            }
+            measured
+        }
+        result => result?,
+    };
+    reject_stub(graph, [a, b], thickness.mean)?;
+    Ok(Pair { faces: [a.min(b), a.max(b)], kind, thickness, overlap_area })
+}
+
+/// Curved faces whose analytic test fails on their parameters alone (axes or centres apart, surface kinds
+/// with no analytic pairing: a cylinder against a torus, a plane or a sphere) may still be the two skins of
+/// one wall: real CAD puts an inner and an outer arc on centres a little apart, and a bend meets a flat. The
+/// measurement decides then, as for freeform faces: the distance along the normals, nearly constant or
+/// tapering, over most of the smaller face (`TAPER_SHARE`): a round along a wall's rim faces the other skin
+/// only near its tangent edge and stays a connecting face. A face narrower than the distance measured from it
+/// samples a sliver across a corner, not a wall, and stays unpaired (as `stub_sides` decides for planes and
+/// coaxial cylinders). Rejections that the measurement would repeat
+/// (distance, overlap, material on one side of coaxial faces) stand; two planes are always decided
+/// analytically.
+fn measurable(fa: &Face, fb: &Face, rejection: &Rejection) -> bool {
+    let curved = !fa.surface.is_plane() || !fb.surface.is_plane();
+    curved && matches!(rejection, Rejection::NotCoaxial { .. } | Rejection::Incompatible { .. })
+}
+
+/// The analytic tests of the paper, per pair of surface kinds; freeform faces are measured by rays.
+fn analytic(fa: &Face, fb: &Face, tol: &Tolerances) -> Result<(PairKind, Thickness, f64), Rejection> {
+    Ok(match (&fa.surface, &fb.surface) {
         (Surface::Plane { origin: pa, normal: na }, Surface::Plane { origin: pb, normal: nb }) => {
             planes(fa, fb, (*pa, *na), (*pb, *nb), tol)?
         }
@@ -98,9 +138,7 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
             sampled_pair(fa, fb, PairKind::Freeform, Spread::NearlyConstant, tol)?
         }
         (sa, sb) => return Err(Rejection::Incompatible { kinds: [sa.kind_name(), sb.kind_name()] }),
-    };
-    reject_stub(graph, [a, b], thickness.mean)?;
-    Ok(Pair { faces: [a.min(b), a.max(b)], kind, thickness, overlap_area })
+    })
 }
 
 /// A narrow face stands proud when less than this share of its outline is concave: each long side of a strip is

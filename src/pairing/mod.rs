@@ -2,9 +2,11 @@
 //!
 //! Candidates come from an R-tree over face boxes inflated by t_max (`candidates`); each candidate is tested
 //! by the criteria of its surface kinds (`criteria`); accepted pairs are grouped one-to-many and every face
-//! gets a role (`groups`). The default t_max is estimated from the part (`estimate`).
+//! gets a role (`groups`); pairs that continue each other across smooth edges share one thickness
+//! (`continuation`). The default t_max is estimated from the part (`estimate`).
 
 pub(crate) mod candidates;
+pub(crate) mod continuation;
 pub(crate) mod criteria;
 pub(crate) mod driver;
 pub(crate) mod estimate;
@@ -299,6 +301,7 @@ pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool], tol: &T
         .map(|p| criteria::web_of_sheet(graph, p, &pairs_of, pairable).map(|r| (p.faces.to_vec(), r)))
         .collect();
     drop_rejected(&mut pairs, &mut near, webs);
+    continuation::share_continued_thickness(graph, &mut pairs);
     let (groups, roles) = groups::group_and_classify(graph, &pairs, &near, pairable);
     Pairing { pairs, groups, roles }
 }

@@ -11,7 +11,7 @@ use serde::Serialize;
 use crate::model::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
 use crate::model::params::Position;
 use crate::model::shapes::Placement;
-use crate::model::tolerance::TAPER_SPREAD;
+use crate::model::tolerance::{SAME_THICKNESS, TAPER_SPREAD};
 use crate::pairing::{Pair, PairKind, Pairing, Side, Thickness};
 use crate::patch::sides::top_sides;
 
@@ -79,9 +79,6 @@ fn partners_of(face: FaceId, pairs: &[&Pair]) -> Vec<FaceId> {
     out.dedup();
     out
 }
-
-/// Reference faces of one group whose thicknesses differ by less than this share are offset together.
-const SAME_THICKNESS: f64 = 0.01;
 
 /// Each face of `side` with the pairs of the group it belongs to, by face id.
 fn pairs_per_face<'a>(side: &[FaceId], pairs: &[usize], pairing: &'a Pairing) -> Vec<(FaceId, Vec<&'a Pair>)> {
