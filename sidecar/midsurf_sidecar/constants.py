@@ -27,6 +27,10 @@ MIN_PERIMETER = 1e-12
 # Determinant of a surface's first fundamental form below which the parametrisation is singular there (a pole, an
 # apex): no direction across an edge can be solved for.
 SINGULAR_METRIC = 1e-300
+# An edge sample at a singular point (a pole of a face narrowing to a point; an offset surface, whose normal is
+# undefined there) is taken this share of the way toward the edge's middle instead, each tried in turn: the
+# first is the exact sample.
+SINGULAR_NUDGES = (0.0, 1e-3, 1e-2, 5e-2)
 
 # --- describe: the face graph -------------------------------------------------------------------------------------
 

@@ -197,3 +197,47 @@ def test_a_spline_too_large_to_keep_sampled_is_met_ray_by_ray(monkeypatch):
     hits = targets.hits(origin, direction, 20.0, [0])
     meet = GeomAPI_IntCS(Geom_Line(gp_Lin(gp_Pnt(*origin), gp_Dir(*direction))), BRep_Tool.Surface_s(face))
     assert [h["distance"] for h in hits] == pytest.approx([10.0 - meet.Point(1).Z()], abs=1e-8)
+
+
+
+def test_an_edge_ending_at_a_singular_point_is_sampled_just_short_of_it():
+    """Where the face's surface has no derivatives (an offset surface over its basis's pole: OCCT raises
+    Geom_UndefinedDerivative), the edge's sample there steps toward the edge's middle: the edge still gets a
+    point, a unit normal and an outward direction at each of its samples, the end one close to the corner."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakePolygon
+    from OCP.TopAbs import TopAbs_EDGE
+
+    from midsurf_sidecar.geom.vectors import dot, norm
+    from midsurf_sidecar.joints.edge_probe import FaceSides, sample_edge
+
+    square = BRepBuilderAPI_MakePolygon(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0), gp_Pnt(10, 10, 0), gp_Pnt(0, 10, 0), True)
+    face = BRepBuilderAPI_MakeFace(square.Wire(), True).Face()
+    sides = FaceSides(face)
+    exact = sides.surface
+
+    class SingularAtOrigin:
+        """The plane, but with no derivatives at the corner (0, 0)."""
+
+        def D1(self, u, v, point, su, sv):
+            exact.D1(u, v, point, su, sv)
+            if point.Distance(gp_Pnt(0, 0, 0)) < 1e-9:
+                raise RuntimeError("Geom_UndefinedDerivative")
+
+        def __getattr__(self, name):
+            return getattr(exact, name)
+
+    sides.surface = SingularAtOrigin()
+    checked = corner_edges = 0
+    explorer = TopExp_Explorer(face, TopAbs_EDGE)
+    while explorer.More():
+        edge = TopoDS.Edge(explorer.Current())
+        explorer.Next()
+        samples = sample_edge(face, edge, 5, sides)
+        assert len(samples) == 5
+        for s in samples:
+            assert abs(norm(s.normal) - 1.0) < 1e-9 and abs(norm(s.outward) - 1.0) < 1e-9
+            assert abs(dot(s.normal, s.outward)) < 1e-9
+            checked += 1
+        # The two edges at the corner keep a sample within 1% of their length of it.
+        corner_edges += min(norm(s.point) for s in samples) < 0.1
+    assert checked == 20 and corner_edges == 2

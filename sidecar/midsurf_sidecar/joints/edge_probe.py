@@ -57,6 +57,7 @@ from ..constants import (
     SIDE_STEP_RATIO,
     SIDE_STEP_TOLERANCES,
     SINGULAR_METRIC,
+    SINGULAR_NUDGES,
 )
 from ..geom.topology import diagonal
 from ..geom.vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
@@ -142,19 +143,33 @@ def sample_edge(face: TopoDS_Face, edge: TopoDS_Shape, samples: int, sides: Face
     reversed_edge = oriented.Orientation() == TopAbs_REVERSED
     reversed_face = face.Orientation() == TopAbs_REVERSED
     first, last = curve.FirstParameter(), curve.LastParameter()
+    centre = 0.5 * (first + last)
+
+    def frame(s: float) -> tuple[gp_Pnt, Vec, Any, Vec, Vec, Vec] | None:
+        """Point, tangent, uv and the surface's derivatives at curve parameter s; None at a singular point."""
+        point, tangent = gp_Pnt(), gp_Vec()
+        sp, su, sv = gp_Pnt(), gp_Vec(), gp_Vec()
+        try:
+            curve.D1(s, point, tangent)
+            uv = curve2d.Value(s)
+            surface.D1(uv.X(), uv.Y(), sp, su, sv)
+        except Exception:  # OCCT's Standard_Failure types: an offset surface's undefined normal, a pole
+            return None
+        normal, t = cross(xyz(su), xyz(sv)), xyz(tangent)
+        if norm(normal) == 0.0 or norm(t) == 0.0:
+            return None
+        return point, t, uv, normal, xyz(su), xyz(sv)
+
     out = []
     middle = None
     for k in range(samples):
         s = first + (last - first) * k / (samples - 1)
-        point, tangent = gp_Pnt(), gp_Vec()
-        curve.D1(s, point, tangent)
-        uv = curve2d.Value(s)
-        sp, su, sv = gp_Pnt(), gp_Vec(), gp_Vec()
-        surface.D1(uv.X(), uv.Y(), sp, su, sv)
-        normal = cross(xyz(su), xyz(sv))
-        t = xyz(tangent)
-        if norm(normal) == 0.0 or norm(t) == 0.0:
+        # A singular point (the pole of a face narrowing to a point, where an offset surface has no normal) is
+        # stepped past, toward the middle of the edge, by a little of its length.
+        at = next((f for f in (frame(s + (centre - s) * nudge) for nudge in SINGULAR_NUDGES) if f), None)
+        if at is None:
             raise KernelError(f"edge sample {k}: zero tangent or normal (a singular point)")
+        point, t, uv, normal, su_v, sv_v = at
         normal = scale(normal, (-1.0 if reversed_face else 1.0) / norm(normal))
         t = scale(t, (-1.0 if reversed_edge else 1.0) / norm(t))
         # The face lies to the left of its boundary run (looking down the normal): outward is to the right.
@@ -162,7 +177,7 @@ def sample_edge(face: TopoDS_Face, edge: TopoDS_Shape, samples: int, sides: Face
         outward = scale(outward, 1.0 / norm(outward))
         out.append(EdgeSample(xyz(point), normal, outward))
         if k == samples // 2:
-            middle = ((uv.X(), uv.Y()), xyz(su), xyz(sv))
+            middle = ((uv.X(), uv.Y()), su_v, sv_v)
     if _runs_backwards(sides, edge, out[samples // 2], middle):
         out = [EdgeSample(s.point, s.normal, scale(s.outward, -1.0)) for s in out]
     return out
@@ -342,7 +357,10 @@ class RaySurface:
         """Newton's method on S(u, v) - (origin + w direction) = 0 from a located meeting."""
         point, su, sv = gp_Pnt(), gp_Vec(), gp_Vec()
         for _ in range(RAY_MEET_ITERATIONS):
-            self.exact.D1(u, v, point, su, sv)
+            try:
+                self.exact.D1(u, v, point, su, sv)
+            except Exception:  # an offset surface has no normal at its basis's singular points
+                return None
             residual = sub(xyz(point), add_scaled(origin, direction, w))
             if norm(residual) <= RAY_MEET_RESIDUAL:
                 return xyz(point)
