@@ -54,7 +54,8 @@ pub enum Command {
     ///
     /// Parallel pairs have opposite normals; draft pairs normals within twice --draft-max of opposite; curved
     /// pairs share their axis or centre (cylinders, cones, spheres, tori) or keep a nearly constant distance
-    /// (freeform). Every pair is closer than --t-max and its faces overlap when projected onto each other.
+    /// measured by rays (freeform, and curved faces a little off each other's axis). Every pair is closer than
+    /// --t-max and its faces overlap when projected onto each other.
     Pairs {
         /// The STEP file to read.
         part: PathBuf,
