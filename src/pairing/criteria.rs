@@ -36,8 +36,8 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
                 other => other?,
             };
             let share = measured.2 / fa.area.min(fb.area);
-            if share < TAPER_SHARE {
-                return Err(Rejection::Overlap { share, limit: TAPER_SHARE });
+            if share < MEASURED_SHARE {
+                return Err(Rejection::Overlap { share, limit: MEASURED_SHARE });
             }
             let width = graph.face_width(a).min(graph.face_width(b));
             if width < measured.1.mean {
@@ -55,8 +55,8 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
 /// with no analytic pairing: a cylinder against a torus, a plane or a sphere) may still be the two skins of
 /// one wall: real CAD puts an inner and an outer arc on centres a little apart, and a bend meets a flat. The
 /// measurement decides then, as for freeform faces: the distance along the normals, nearly constant or
-/// tapering, over most of the smaller face (`TAPER_SHARE`): a round along a wall's rim faces the other skin
-/// only near its tangent edge and stays a connecting face. A face narrower than the distance measured from it
+/// tapering, over nearly all of the smaller face (`MEASURED_SHARE`): a round along a wall's rim faces the
+/// other skin only near its tangent edge and stays a connecting face. A face narrower than the distance measured from it
 /// samples a sliver across a corner, not a wall, and stays unpaired (as `stub_sides` decides for planes and
 /// coaxial cylinders). Rejections that the measurement would repeat
 /// (distance, overlap, material on one side of coaxial faces) stand; two planes are always decided
@@ -446,6 +446,13 @@ fn parallel_cones(
 /// face each other nearly everywhere, while two differently shaped faces (a wavy skin across a flat one) do
 /// only in patches.
 const TAPER_SHARE: f64 = 0.5;
+
+/// Curved faces the parameters reject pair by measurement only when this share of the smaller face meets the
+/// other: the inner and outer skins of one wall drawn on centres a little apart face each other nearly
+/// everywhere (all but the rays at their ends), while two faces of a block that face each other in part (a
+/// boss's round beside a pocket's) do over half of it or less. The patch is the offset of the whole larger
+/// face, with no footprint to clip it to, so the pair must be nearly whole.
+const MEASURED_SHARE: f64 = 0.8;
 
 /// How the distance between two faces measured by rays may vary.
 enum Spread {

@@ -210,6 +210,13 @@ fn curved_skins_a_little_off_axis_pair_by_measurement() {
     assert_eq!(p.kind, PairKind::Freeform);
     assert!(p.thickness.mean > 0.81 && p.thickness.mean < 0.84, "{:?}", p.thickness);
     assert!(p.thickness.min > 0.79 && p.thickness.max < 0.86, "{:?}", p.thickness);
+    // The same skins turned apart, the inner one meeting the outer over 60% of it: two faces of a block that
+    // face each other in part, not the skins of one wall.
+    let turned = pair_of(vec![
+        cylinder(DVec3::ZERO, 3.0, span, 40.0, false),
+        cylinder(DVec3::new(0.05, 0.0, 0.0), 3.8, (0.2 * std::f64::consts::PI, 0.7 * std::f64::consts::PI), 40.0, true),
+    ]);
+    assert!(matches!(turned, Err(Rejection::Overlap { limit, .. }) if limit == 0.8), "{turned:?}");
     // A dome's skins on centres 0.2 apart: 1.5 +/- 0.2 over the cap.
     let theta = (0.0, 1.0);
     let dome =
