@@ -4,6 +4,7 @@
 use super::{Pair, PairKind, Thickness};
 use crate::model::face_graph::{Convexity, FaceGraph, FaceId};
 use crate::model::tolerance::SAME_THICKNESS;
+use crate::model::union_find::{find, union};
 
 /// Pairs that run on into each other as one wall get one thickness: pairs (a, b) and (c, d) where a meets c and
 /// b meets d across smooth edges (each skin runs on tangentially: a vault into its dome), at one thickness
@@ -34,23 +35,15 @@ pub fn share_continued_thickness(graph: &FaceGraph, pairs: &mut [Pair]) {
         let (s, t) = (p.thickness.mean, q.thickness.mean);
         measured && (s - t).abs() <= SAME_THICKNESS * s.max(t)
     };
-    // Chains of pairs (union-find over pair indices, the lowest index the root: deterministic).
+    // Chains of pairs: a union-find forest over pair indices.
     let mut root: Vec<usize> = (0..pairs.len()).collect();
-    fn find(root: &mut [usize], mut i: usize) -> usize {
-        while root[i] != i {
-            root[i] = root[root[i]];
-            i = root[i];
-        }
-        i
-    }
     for (i, p) in pairs.iter().enumerate() {
         for (a, b) in [(p.faces[0], p.faces[1]), (p.faces[1], p.faces[0])] {
             for &c in &smooth[a] {
                 for &j in &pairs_of[c] {
                     let q = &pairs[j];
                     if j != i && smooth[b].binary_search(&q.other(c)).is_ok() && one_wall(p, q) {
-                        let (ri, rj) = (find(&mut root, i), find(&mut root, j));
-                        root[ri.max(rj)] = ri.min(rj);
+                        union(&mut root, i, j);
                     }
                 }
             }

@@ -31,19 +31,20 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
     let (kind, thickness, overlap_area) = match analytic(fa, fb, tol) {
         Err(rejection) if measurable(fa, fb, &rejection) => {
             // Faces the rays cannot see across say no more than their parameters did.
-            let measured = match sampled_pair(fa, fb, PairKind::Freeform, Spread::NearlyConstant, tol) {
-                Err(Rejection::NotFacing) | Err(Rejection::Overlap { share: 0.0, .. }) => return Err(rejection),
-                other => other?,
-            };
-            let share = measured.2 / fa.area.min(fb.area);
+            let (kind, thickness, overlap_area) =
+                match sampled_pair(fa, fb, PairKind::Freeform, Spread::NearlyConstant, tol) {
+                    Err(Rejection::NotFacing) | Err(Rejection::Overlap { share: 0.0, .. }) => return Err(rejection),
+                    other => other?,
+                };
+            let share = overlap_area / fa.area.min(fb.area);
             if share < MEASURED_SHARE {
                 return Err(Rejection::Overlap { share, limit: MEASURED_SHARE });
             }
             let width = graph.face_width(a).min(graph.face_width(b));
-            if width < measured.1.mean {
-                return Err(Rejection::Stub { width, thickness: measured.1.mean, top: false });
+            if width < thickness.mean {
+                return Err(Rejection::Stub { width, thickness: thickness.mean, top: false });
             }
-            measured
+            (kind, thickness, overlap_area)
         }
         result => result?,
     };
@@ -56,11 +57,10 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
 /// one wall: real CAD puts an inner and an outer arc on centres a little apart, and a bend meets a flat. The
 /// measurement decides then, as for freeform faces: the distance along the normals, nearly constant or
 /// tapering, over nearly all of the smaller face (`MEASURED_SHARE`): a round along a wall's rim faces the
-/// other skin only near its tangent edge and stays a connecting face. A face narrower than the distance measured from it
-/// samples a sliver across a corner, not a wall, and stays unpaired (as `stub_sides` decides for planes and
-/// coaxial cylinders). Rejections that the measurement would repeat
-/// (distance, overlap, material on one side of coaxial faces) stand; two planes are always decided
-/// analytically.
+/// other skin only near its tangent edge and stays a connecting face. A face narrower than the distance
+/// measured from it samples a sliver across a corner, not a wall, and stays unpaired (as `stub_sides` decides
+/// for planes and coaxial cylinders). Rejections that the measurement would repeat (distance, overlap,
+/// material on one side of coaxial faces) stand; two planes are always decided analytically.
 fn measurable(fa: &Face, fb: &Face, rejection: &Rejection) -> bool {
     let curved = !fa.surface.is_plane() || !fb.surface.is_plane();
     curved && matches!(rejection, Rejection::NotCoaxial { .. } | Rejection::Incompatible { .. })

@@ -74,7 +74,7 @@ def mid_wall_patch(
     partners = options.clip.partners if options.clip is not None else [[] for _ in face_ids]
 
     def make(face: TopoDS_Face, k: int) -> TopoDS_Face:
-        return mid_wall_face(face, [TopoDS.Face(face_map.FindKey(p + 1)) for p in partners[k]], distance)
+        return mid_wall_face(face, _faces(face_map, partners[k]), distance)
 
     return _patch(face_map, face_ids, make, options)
 
@@ -83,6 +83,11 @@ def projected_patch(
     face_map: IndexedShapeMap, face_ids: list[int], origin: Vec, normal: Vec, options: Options = Options()
 ) -> tuple[TopoDS_Compound, list, int]:
     return _patch(face_map, face_ids, lambda face, _: project_face(face, origin, normal), options)
+
+
+def _faces(face_map: IndexedShapeMap, ids: list[int]) -> list[TopoDS_Face]:
+    """The faces of the solid with the given 0-based ids."""
+    return [TopoDS.Face(face_map.FindKey(i + 1)) for i in ids]
 
 
 def fill_loops(face: TopoDS_Face, edges: list[TopoDS_Shape]) -> tuple[TopoDS_Face, int]:
@@ -132,8 +137,8 @@ def _patch(
                 filled += removed
             new_faces = [make(source, k)]
             if clip is not None and clip.partners[k]:
-                partners = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.partners[k]]
-                exclude = [TopoDS.Face(face_map.FindKey(p + 1)) for p in clip.exclude[k]]
+                partners = _faces(face_map, clip.partners[k])
+                exclude = _faces(face_map, clip.exclude[k])
                 new_faces = clip_to_partners(
                     new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end, exclude, wall
                 )
