@@ -294,6 +294,18 @@ def plate_chamfers() -> Fixture:
     return Fixture(single_solid(part), 12000 - (6000 - (6000 + 4 * 99 * 59 + 98 * 58) / 6), 10)
 
 
+def plate_deep_chamfers() -> Fixture:
+    """flat_plate with its four top rim edges chamfered 1.5 x 45 degrees, deeper than half the plate: the bottom
+    skin runs 0.5 past where the mid-plane (z = 1) meets the chamfers, so the bottom's offset must be cut back
+    to the solid, not kept over the rim. Faces: 10. Volume: 12000 less the mitred ring, the top 1.5 of the
+    slab less the frustum under the chamfers, 1.5 * 6000 - 1.5 * (6000 + 4 * 98.5 * 58.5 + 97 * 57) / 6.
+    """
+    part = box(0, 0, 0, 100, 60, 2)
+    top = [e for e in part.edges() if abs(e.center().Z - 2) < 1e-6]
+    part = part.chamfer(1.5, None, top)
+    return Fixture(single_solid(part), 12000 - 1.5 * (6000 - (6000 + 4 * 98.5 * 58.5 + 97 * 57) / 6), 10)
+
+
 def l_bracket_chamfer() -> Fixture:
     """l_bracket with its outer corner chamfered 1 x 45 degrees. Twin: l_bracket. Faces: 9.
     Volume: l_bracket's - 40 * 1^2 / 2.
@@ -835,6 +847,7 @@ PARTS: list[Callable[[], Fixture]] = [
     plate_holes,
     plate_boss,
     plate_chamfers,
+    plate_deep_chamfers,
     l_bracket_chamfer,
     t_rib_chamfers,
     t_rib_rounded,

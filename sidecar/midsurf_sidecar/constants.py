@@ -187,6 +187,9 @@ STRIP_RELATIVE_TOLERANCE = 1e-6
 # A strip on a cylindrical patch keeps to the cylinder when the samples grow along its axis: most within this
 # angle (degrees) of it, none against it.
 AXIAL_DEG = 45.0
+# A piece of a patch face cut off by the solid's boundary is enclosed (a filled hole of the wall, which the
+# patch spans on purpose) when all of its boundary but this share of it is the cut.
+ENCLOSED_SHARE = 1e-6
 # Points inside each edge of a curved patch face at which its boundary is tested for leaving the solid
 # (patch.face_clip.within_solid: a sign the fuzzy split missed an overshoot).
 BOUNDARY_SAMPLES = 5

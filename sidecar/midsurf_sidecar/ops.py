@@ -10,7 +10,7 @@ from OCP.BRep import BRep_Builder
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 
-from .constants import RIM_SHARE
+from .constants import CONFUSION, RIM_SHARE
 from .describe import face_graph
 from .fuse import patch_fuse
 from .geom import booleans
@@ -80,7 +80,10 @@ def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     # An offset to mid-wall is half the wall: a curved patch's overshoot of its rim within the rim tolerance
     # (a tenth of the wall) is left as it is (within_solid).
     negligible = RIM_SHARE * 2.0 * abs(offset) if offset is not None else 0.0
-    options = mid_patch.Options(clip, reverse, _fill_edges(solid, args), solid, negligible)
+    # A patch on a skin (position top or bottom: a step to mid-wall) lies on the solid's boundary, not in it.
+    on_skin = clip is not None and abs(clip.to_mid) > CONFUSION
+    cut_planes = offset is not None and not on_skin
+    options = mid_patch.Options(clip, reverse, _fill_edges(solid, args), solid, negligible, cut_planes)
     if offset is not None and optional_bool(args, "mid_wall", False):
         patch, faces, filled = mid_patch.mid_wall_patch(face_map, face_ids, offset, options)
     elif offset is not None:

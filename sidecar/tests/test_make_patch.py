@@ -595,6 +595,16 @@ def test_a_tube_patch_ends_on_an_oblique_rim_plane_not_past_it(client):
 
 
 
+def test_a_plate_patch_ends_where_its_mid_plane_meets_a_deep_chamfer(client):
+    """plate_deep_chamfers: a 100 x 60 x 2 plate whose top rim is chamfered 1.5 x 45 degrees. The bottom skin runs
+    to the plate's edge, but the mid-plane z = 1 meets the chamfers 0.5 inside it: the bottom's offset is cut
+    there (99 x 59), not left 0.5 out of the material all round."""
+    handle = load_fixture(client, "plate_deep_chamfers.step")
+    bottom = face_with(graph(client, handle), "plane", lambda f: f["normal"][2] < -0.99)["id"]
+    ok = client.ok("make_patch", handle=handle, faces=[bottom], offset=-1.0)
+    assert sum(f["area"] for f in ok["faces"]) == pytest.approx(99.0 * 59.0, rel=1e-9)
+
+
 def test_the_cut_to_the_solid_splits_by_the_faces_that_can_cut():
     """within_solid splits a curved patch face by the solid's faces near it only, and by the wall's own skins only
     where they touch it: a tube R 20 / R 18, 40 long, its outer cylinder offset to R 19. The two end rings can

@@ -23,7 +23,8 @@ from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
 from ..constants import (
-    BOUNDARY_SAMPLES, CONFUSION, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AXES, SECTOR_INNER_SHARE, TONGUE_REACH,
+    BOUNDARY_SAMPLES, CONFUSION, ENCLOSED_SHARE, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AXES, SECTOR_INNER_SHARE,
+    TONGUE_REACH,
 )
 from ..geom.booleans import split, unify
 from ..geom.face_normals import OutwardNormals
@@ -42,13 +43,14 @@ def clip_to_partners(
     narrow_end: float,
     exclude: list[TopoDS_Face] = (),
     wall: WallProbe | None = None,
-) -> list[TopoDS_Face]:
-    """The pieces of `face` over the footprint of `partners`, plus the narrow uncovered pieces; [face] when
-    nothing worth clipping. Pieces over one of `exclude` (the partners of the face's other thickness levels,
-    whose own patches cover them) go whatever their width. An uncovered piece between two covered ones lies under something crossing the
-    wall (a wall, a lug) and stays up to `narrow` wide, or wider where `wall` shows the wall running on under all
-    of it (WallProbe.runs_through: the root of a thick land or a block, which get no patch of their own): the
-    patch runs on across the junction. One at a dead
+) -> tuple[list[TopoDS_Face], bool]:
+    """(the pieces of `face` over the footprint of `partners`, plus the narrow uncovered pieces, or [face] when
+    nothing worth clipping; whether any of them lies beyond that footprint, True when the clip cannot tell).
+    Pieces over one of `exclude` (the partners of the face's other thickness levels, whose own patches cover
+    them) go whatever their width. An uncovered piece between two covered ones lies under something crossing
+    the wall (a wall, a lug) and stays up to `narrow` wide, or wider where `wall` shows the wall running on under
+    all of it (WallProbe.runs_through: the root of a thick land or a block, which get no patch of their own):
+    the patch runs on across the junction. One at a dead
     end (an overshoot at a corner, a slot's end running into a block) stays up to `narrow_end` wide; past it
     the piece lies over other material, and the joints grow the clipped edge instead. A narrow piece at a dead
     end that reaches farther than TONGUE_REACH x `narrow_end` from the covered pieces is a tongue, not a corner's
@@ -63,7 +65,7 @@ def clip_to_partners(
     recess in a floor). Only planar faces take `exclude`.
     """
     if not partners:
-        return [face]
+        return [face], True
     surface = BRepAdaptor_Surface(face, True)
     excluded = []
     if surface.GetType() == GeomAbs_Plane and all(is_plane(p) for p in [*partners, *exclude]):
@@ -72,20 +74,20 @@ def clip_to_partners(
         prisms = [_prism(_outline(p), normal, reach) for p in partners]
         excluded = [_prism(p, normal, reach) for p in exclude]
     elif exclude:
-        return [face]
+        return [face], True
     elif surface.GetType() == GeomAbs_Cylinder:
         cylinders = [_coaxial(surface.Cylinder(), p, fuzzy) for p in partners]
         if any(c is None for c in cylinders):
-            return [face]
+            return [face], True
         reach = diagonal(face) + max(diagonal(p) for p in partners)
         radius = surface.Cylinder().Radius()
         prisms = [_sector(c, p, radius, reach) for c, p in zip(cylinders, partners)]
     else:
-        return [face]
+        return [face], True
 
     splitter = split(face, prisms + excluded, fuzzy)
     if splitter is None:
-        return [face]
+        return [face], True
     # One classifier per prism, loaded once, asked once per piece.
     classifiers = [BRepClass3d_SolidClassifier(prism) for prism in prisms]
     others = [BRepClass3d_SolidClassifier(prism) for prism in excluded]
@@ -116,13 +118,14 @@ def clip_to_partners(
         kept.append(i)
     area = surface_props(face).Mass()
     kept_area = sum(areas[i] for i in kept)
-    kept = [faces[i] for i in kept]
     if not kept or kept_area >= (1.0 - MIN_CLIPPED_SHARE) * area:
-        return [face]
+        return [face], not all(covered)
+    overhang = not all(covered[i] for i in kept)
+    kept = [faces[i] for i in kept]
     merged = indexed_map(unify(kept, fuzzy), TopAbs_FACE) if len(kept) > 1 else None
     if merged is None:
-        return kept
-    return [TopoDS.Face(merged.FindKey(i)) for i in range(1, merged.Size() + 1)]
+        return kept, overhang
+    return [TopoDS.Face(merged.FindKey(i)) for i in range(1, merged.Size() + 1)], overhang
 
 
 def within_solid(
@@ -153,22 +156,34 @@ def within_solid(
     if all(inside) or not any(inside):
         return [face]
     cut = _cut_lengths(shape, pieces, inside)
-    outside = [k for k in range(len(faces)) if not inside[k]]
+    # A piece outside whose whole boundary is cut lies in a hole of the wall: a suppressed hole's filled loop,
+    # which the patch spans on purpose. Only what runs out past the wall's edge goes.
+    outside = [k for k in range(len(faces)) if not inside[k] and not _enclosed(faces[k], cut[k])]
     if all(surface_props(faces[k]).Mass() / max(cut[k], MIN_PERIMETER) <= negligible for k in outside):
         return [face]
-    return [piece for piece, keep in zip(faces, inside) if keep]
+    return [piece for k, piece in enumerate(faces) if k not in outside]
+
+
+def _enclosed(piece: TopoDS_Face, cut: float) -> bool:
+    """Whether the piece's boundary is all cut (`cut`: the length of it shared with pieces across the solid's
+    boundary), so that it touches none of the face's own edges."""
+    perimeter = GProp_GProps()
+    BRepGProp.LinearProperties_s(piece, perimeter)
+    return perimeter.Mass() - cut <= ENCLOSED_SHARE * perimeter.Mass()
 
 
 def _split_by_solid(face: TopoDS_Face, solid: SolidBoundary, fuzzy: float, skins):
     """(the split shape, its faces) of the face split by the solid's boundary, None when it is not cut. OCCT's
     fuzzy split can miss a section running at a shallow angle to the face's own rim (a tube's wall cut by an
     oblique plane): when the face's boundary runs out of the solid and the fuzzy split gives one
-    piece, it splits again without fuzz. Only the solid's faces near the face cut it (a split by the whole
-    solid costs as much as all its faces), and `skins` only when they touch it."""
+    piece, a curved face splits again without fuzz (a plane meets the faces that cut it along straight lines
+    or conics, which the fuzzy split finds; testing its boundary costs seconds on a large plate). Only the
+    solid's faces near the face cut it (a split by the whole solid costs as much as all its faces), and `skins`
+    only when they touch it."""
     near = solid.faces_near(face, fuzzy, skins)
     if near is None:
         return None
-    for tolerance in (fuzzy, 0.0):
+    for tolerance in (fuzzy,) if is_plane(face) else (fuzzy, 0.0):
         if tolerance == 0.0 and not _boundary_leaves(face, solid.classifier, fuzzy):
             return None
         splitter = split(face, [near], tolerance)

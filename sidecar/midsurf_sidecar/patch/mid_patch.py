@@ -51,13 +51,17 @@ class Options:
     patch normal then points out of the top side); `fill`: edges of the solid's suppressed features, whose
     inner loops are removed from the source faces before they are offset or projected; `solid`: the solid
     the faces come from, which a curved patch face is cut to (within_solid), unless what lies outside is no
-    wider than `negligible`."""
+    wider than `negligible`; with `cut_planes` a planar one too, when it reaches past its partners (or has
+    none). An offset skin can run past where its wall's mid-plane leaves the material (a rim chamfered deeper
+    than half the wall on one side); a projection onto a draft's bisector is left whole, its skins overshooting
+    the rim by their draft as its neighbours' do."""
 
     clip: Clip | None = None
     reverse: bool = False
     fill: list[TopoDS_Shape] = field(default_factory=list)
     solid: TopoDS_Shape | None = None
     negligible: float = 0.0
+    cut_planes: bool = False
 
 
 def offset_patch(
@@ -136,15 +140,17 @@ def _patch(
                 source, removed = fill_loops(source, options.fill)
                 filled += removed
             new_faces = [make(source, k)]
+            overhang = True
             if clip is not None and clip.partners[k]:
                 partners = _faces(face_map, clip.partners[k])
                 exclude = _faces(face_map, clip.exclude[k])
-                new_faces = clip_to_partners(
+                new_faces, overhang = clip_to_partners(
                     new_faces[0], partners, clip.fuzzy, clip.narrow, clip.narrow_end, exclude, wall
                 )
-            # Planar faces are cut to their partners' footprints instead (prisms of their outlines keep an offset
-            # plane in the material); a cylinder's clip to its partners' sectors is about the axis only.
-            if solid is not None and not is_plane(new_faces[0]):
+            # A planar face over its partners' footprint lies between the wall's skins; the clip keeps narrow
+            # pieces beyond it (a corner's overshoot), and what of them runs out of the solid goes here. A
+            # cylinder's clip to its partners' sectors is about the axis only: a curved face is always cut.
+            if solid is not None and ((options.cut_planes and overhang) or not is_plane(new_faces[0])):
                 fuzzy = clip.fuzzy if clip is not None else CONFUSION
                 skins = [face_id, *(clip.partners[k] if clip is not None else [])]
                 skins = [face_map.FindKey(f + 1) for f in skins]
