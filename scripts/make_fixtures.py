@@ -816,6 +816,28 @@ def rib_boss_bore() -> Fixture:
     return Fixture(part, part.volume, 15)
 
 
+def rib_through_boss() -> Fixture:
+    """Plate 100 x 60 x 3 with a screw boss (outside R 5.25, bore R 2.25 through the plate, z 3..31.6) on the axis
+    (50, 30), and a rib 2.86 thick (y 27.07..29.93, mid-plane y = 28.5) running through it from x = 20 to 80,
+    flush with its top. The class: a wall crossing a tube off its axis (ribs tying bosses in moulded housings).
+    The rib splits the boss's skin into two arcs whose offsets stop inside the rib, 1.5 off the rib's mid-plane
+    on one side and 0.6 past it on the other; the boss's mid-cylinder (R 3.75) runs on through the rib and the
+    rib meets it on both sides. Faces: 16. Volume: the plate less the bore, and over 28.6 the boss's ring and
+    the rib's slab less its part inside R 5.25 (a band of the disc between u = -2.93 and -0.07 from its centre:
+    F(u) = u sqrt(r^2 - u^2) + r^2 asin(u / r) from one to the other).
+    """
+    part = box(0, 0, 0, 100, 60, 3) + cylinder_z(50, 30, 3, 5.25, 28.6) + box(20, 27.07, 3, 60, 2.86, 28.6)
+    part = single_solid(part - cylinder_z(50, 30, 0, 2.25, 31.6))
+
+    def band(u: float, r: float = 5.25) -> float:
+        return u * math.sqrt(r * r - u * u) + r * r * math.asin(u / r)
+
+    inside = band(-0.07) - band(-2.93)
+    ring = math.pi * (5.25**2 - 2.25**2)
+    volume = 100 * 60 * 3 - math.pi * 2.25**2 * 3 + 28.6 * (ring + 60 * 2.86 - inside)
+    return Fixture(part, volume, 16)
+
+
 def vault_off_centre() -> Fixture:
     """A vault 40 long (y) closed at one end by a quarter dome, standing on z = 0: outer skin a half-cylinder R 20
     on the axis x = 20, z = 0 and a quarter sphere R 20 centred at (20, 40, 0); inner skin a cylinder R 18 and a
@@ -877,6 +899,7 @@ PARTS: list[Callable[[], Fixture]] = [
     t_rib_touching,
     plates_butted,
     rib_boss_bore,
+    rib_through_boss,
     vault_off_centre,
 ]
 

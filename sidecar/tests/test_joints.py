@@ -239,3 +239,30 @@ def test_a_step_bridge_between_coaxial_arcs_is_a_band_of_a_cone_sharing_its_arcs
     curves = [BRepAdaptor_Curve(TopoDS.Edge(e)) for e in subshapes(band, TopAbs_EDGE)]
     radii = sorted(round(c.Circle().Radius(), 9) for c in curves if c.GetType() == GeomAbs_Circle)
     assert radii == [10.39, 10.76]
+
+
+def test_a_band_between_two_arcs_of_one_cylinder_is_a_face_of_that_cylinder():
+    """A gap in a tube's own mid-surface (a rib crossing a boss off its axis) is bridged between the two arcs
+    at the ends of the stretch the gap's rulings share: both of radius 3.75, at z = 3 and z = 31.6, from angle
+    0 counter-clockwise to 33 degrees. The band is a face of that cylinder (a ruled B-spline would not merge into
+    the patch), of area 3.75 x 0.576 x 28.6."""
+    import math
+
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.GeomAbs import GeomAbs_Cylinder
+
+    from midsurf_sidecar.geom.topology import surface_props
+    from midsurf_sidecar.joints.edge_strip import corner
+
+    def at(angle, z):
+        return (3.75 * math.cos(angle), 3.75 * math.sin(angle), z)
+
+    gap = math.radians(33.0)
+    quad = [at(0.0, 3.0), at(0.0, 31.6), at(gap, 31.6), at(gap, 3.0)]
+    band = corner(quad, (1.0, 0.0, 0.0), ((0.0, 0.0, 0.0), (0.0, 0.0, 1.0)))
+    assert BRepCheck_Analyzer(band).IsValid()
+    surface = BRepAdaptor_Surface(band)
+    assert surface.GetType() == GeomAbs_Cylinder
+    assert surface.Cylinder().Radius() == pytest.approx(3.75, abs=1e-9)
+    assert surface_props(band).Mass() == pytest.approx(3.75 * gap * 28.6, rel=1e-9)

@@ -12,6 +12,10 @@ pub struct LooseEdge {
     pub thickness: f64,
     /// How far away the partner its rays found is (infinite when it found none).
     pub nearest: f64,
+    /// How far its patch's joints reach (`PatchInfo::reach`).
+    pub reach: f64,
+    /// Its patch is the offset of a freeform face (`PatchInfo::freeform`).
+    pub freeform: bool,
     /// Its outside lies in the material (else it is on the rim).
     pub open: bool,
     /// Samples along the edge, ends included.
@@ -234,11 +238,7 @@ fn line_bridge(
     if level > reach || across.abs() > reach {
         return None;
     }
-    let (b0, b1) = ((b - a).dot(u), (b - a).dot(u) + lb * u.dot(v).signum());
-    let (s0, s1) = (b0.min(b1).max(0.0), b0.max(b1).min(la));
-    if s1 - s0 <= SHARED_STRETCH_SHARE * la {
-        return None;
-    }
+    let (s0, s1) = shared_stretch((a, u, la), (b, v, lb))?;
     let ramp = laid_down(et, s1 - s0 >= STEP_SPAN_SHARE * lb && s1 - s0 >= reach, level, across);
     let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
     let far = offset - ek.outward * run;
@@ -305,6 +305,103 @@ fn arc_bridge(
     let far = |s: f64| on_b(s) - turned(ek.outward, mid_b, s) * run;
     let quad = [on_a(s0), far(s0), far(s1), on_a(s1)];
     Some((gap, owned(edges, thin, thick, first, ramp, quad, Some([ca, axis]))))
+}
+
+/// Gaps in a cylindrical patch's own surface: two straight free edges of one patch (not a freeform one, whose
+/// straight edges need not lie on one cylinder with the band between them), both open (their outside in
+/// the material), rulings of one cylinder (parallel, their normals square to them and meeting on one axis) whose
+/// outward directions face each other across an arc no longer than the patch's joint reach. Another wall
+/// crossing a tube off its axis (a rib running into a boss beside its bore) splits the tube's skin into arcs;
+/// their offsets stop inside the crossing wall, which may meet the tube's mid-surface on one side only. The
+/// tube's mid-surface runs on through the crossing wall, as a plate's runs on under a rib, and the crossing wall
+/// joins it there: the band of the cylinder between the two edges over the stretch they share fills the gap, on
+/// the patch's own surface, whatever partner the edges' rays found (growing each to it, the two strips would
+/// cross each other past it). Each edge is bridged once, nearest pairs first. The quad is
+/// [a(s0), a(s1), b(s1), b(s0)] with `axis` turning counter-clockwise from a to b: `_coaxial_band`'s arcs
+/// a(s0) -> b(s0) and a(s1) -> b(s1).
+pub fn ruling_gaps(edges: &[LooseEdge]) -> Vec<StepBridge> {
+    let parallel = STEP_PARALLEL_DEG.to_radians().cos();
+    let courses: Vec<Option<Course>> = edges.iter().map(|e| course(&e.points)).collect();
+    let mut candidates: Vec<(f64, StepBridge)> = Vec::new();
+    for i in 0..edges.len() {
+        for j in i + 1..edges.len() {
+            let (ei, ej) = (&edges[i], &edges[j]);
+            if ei.patch != ej.patch || ei.freeform || !ei.open || !ej.open {
+                continue;
+            }
+            let (
+                Some(Course::Line { start: a, direction: u, length: la }),
+                Some(Course::Line { start: b, direction: v, length: lb }),
+            ) = (courses[i], courses[j])
+            else {
+                continue;
+            };
+            if u.dot(v).abs() < parallel {
+                continue;
+            }
+            // In the plane square to the rulings: b's line relative to a's, and the normals there.
+            let d = (b - a).reject_from_normalized(u);
+            let (na, nb) = (ei.normal.reject_from_normalized(u), ej.normal.reject_from_normalized(u));
+            if na.length() < parallel || nb.length() < parallel {
+                continue;
+            }
+            let (na, nb) = (na.normalize(), nb.normalize());
+            // One cylinder: a - r na = b - r nb for one signed radius r.
+            let turn = nb - na;
+            if turn.length_squared() <= COAXIAL_SHARE * COAXIAL_SHARE {
+                continue;
+            }
+            let r = d.dot(turn) / turn.length_squared();
+            if (d - turn * r).length() > COAXIAL_SHARE * r.abs() {
+                continue;
+            }
+            if ei.outward.dot(d) <= 0.0 || ej.outward.dot(d) >= 0.0 {
+                continue;
+            }
+            let center = a - na * r;
+            let (from, to) = (a - center, a + d - center);
+            let gap = r.abs() * from.angle_between(to);
+            if gap > ei.reach.min(ej.reach) {
+                continue;
+            }
+            let Some((s0, s1)) = shared_stretch((a, u, la), (b, v, lb)) else { continue };
+            let direction = if from.cross(to).dot(u) > 0.0 { u } else { -u };
+            let on_a = |s: f64| a + u * s;
+            let quad = [on_a(s0), on_a(s1), on_a(s1) + d, on_a(s0) + d];
+            let bridge = StepBridge { owner: i, other: j, quad, normal: ei.normal, axis: Some([center, direction]) };
+            candidates.push((gap, bridge));
+        }
+    }
+    candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then((x.1.owner, x.1.other).cmp(&(y.1.owner, y.1.other))));
+    let mut used = vec![false; edges.len()];
+    let mut out = Vec::new();
+    for (_, bridge) in candidates {
+        if !used[bridge.owner] && !used[bridge.other] {
+            (used[bridge.owner], used[bridge.other]) = (true, true);
+            out.push(bridge);
+        }
+    }
+    out.sort_by_key(|b| (b.owner, b.other));
+    out
+}
+
+/// The stretch (from, to, along the first line from its start) two parallel lines (start, unit direction,
+/// length) share, None when it is no longer than `SHARED_STRETCH_SHARE` of the first: touching end to end.
+fn shared_stretch((a, u, la): (DVec3, DVec3, f64), (b, v, lb): (DVec3, DVec3, f64)) -> Option<(f64, f64)> {
+    let (b0, b1) = ((b - a).dot(u), (b - a).dot(u) + lb * u.dot(v).signum());
+    let (s0, s1) = (b0.min(b1).max(0.0), b0.max(b1).min(la));
+    (s1 - s0 > SHARED_STRETCH_SHARE * la).then_some((s0, s1))
+}
+
+/// The middle of a band `ruling_gaps` makes: on its cylinder (about `origin`, unit `direction`), half-way round
+/// from a to b and half-way along the stretch.
+pub fn band_middle(quad: &[DVec3; 4], origin: DVec3, direction: DVec3) -> DVec3 {
+    let height = |p: DVec3| (p - origin).dot(direction);
+    let (from, to) =
+        ((quad[0] - origin).reject_from_normalized(direction), (quad[3] - origin).reject_from_normalized(direction));
+    let turn = angle_about(to, direction, from.normalize()).rem_euclid(std::f64::consts::TAU);
+    let middle = glam::DQuat::from_axis_angle(direction, 0.5 * turn) * from;
+    origin + direction * (0.5 * (height(quad[0]) + height(quad[1]))) + middle
 }
 
 /// Whether the bridge from the thin edge `et` is laid down into a ramp, given its offset to the thick edge along

@@ -9,7 +9,18 @@ fn loose(patch: usize, thickness: f64, x: f64, z: f64, y: (f64, f64), outward: D
 
 /// An open edge of patch `patch` (its own wall) that found no partner.
 fn open_edge(patch: usize, thickness: f64, points: Vec<DVec3>, normal: DVec3, outward: DVec3) -> LooseEdge {
-    LooseEdge { patch, wall: (1, patch), thickness, nearest: f64::INFINITY, open: true, points, normal, outward }
+    LooseEdge {
+        patch,
+        wall: (1, patch),
+        thickness,
+        nearest: f64::INFINITY,
+        reach: 3.0 * thickness,
+        freeform: false,
+        open: true,
+        points,
+        normal,
+        outward,
+    }
 }
 
 #[test]
@@ -124,4 +135,47 @@ fn a_rim_band_over_a_rounded_corner_meets_the_wall_below_through_a_conical_ramp(
     let mut moved = edges.clone();
     moved[1].points.iter_mut().for_each(|p| p.x += 0.5);
     assert!(step_bridges(&moved).is_empty());
+}
+
+/// A ruling of a cylinder of radius `r` about the z axis at angle `a` (radians), from z0 to z1, of patch `patch`
+/// (t = 3), its outward direction the tangent turning `sense` (+1 counter-clockwise) about the axis.
+fn ruling(patch: usize, r: f64, a: f64, (z0, z1): (f64, f64), sense: f64) -> LooseEdge {
+    let points = (0..5).map(|k| DVec3::new(r * a.cos(), r * a.sin(), z0 + (z1 - z0) * k as f64 / 4.0)).collect();
+    let outward = DVec3::new(-a.sin(), a.cos(), 0.0) * sense;
+    open_edge(patch, 3.0, points, DVec3::new(a.cos(), a.sin(), 0.0), outward)
+}
+
+#[test]
+fn a_gap_in_a_tubes_own_surface_is_closed_by_a_band_of_its_cylinder() {
+    // A boss's mid-cylinder (r 3.75) split where a rib crosses it off its axis: one arc ends at angle 0 turning
+    // clockwise, the other at -33 degrees turning counter-clockwise; the gap is 3.75 x 0.576 = 2.16 long.
+    let gap = -33f64.to_radians();
+    let edges = [ruling(2, 3.75, 0.0, (3.0, 31.6), -1.0), ruling(2, 3.75, gap, (31.6, 3.0), 1.0)];
+    let bridges = ruling_gaps(&edges);
+    assert_eq!(bridges.len(), 1, "{bridges:?}");
+    let StepBridge { quad, axis, .. } = &bridges[0];
+    let [origin, direction] = axis.expect("a band of the cylinder has its axis");
+    assert!(origin.truncate().length() < 1e-9 && (direction.z.abs() - 1.0).abs() < 1e-12, "{axis:?}");
+    // [a(s0), a(s1), b(s1), b(s0)]: the arcs a -> b turn counter-clockwise about `direction` by the gap.
+    let level = |p: DVec3| DVec3::new(p.x, p.y, 0.0);
+    let turn = |p: DVec3, q: DVec3| direction.dot(level(p).cross(level(q))).atan2(level(p).dot(level(q)));
+    assert!((turn(quad[0], quad[3]).abs() - gap.abs()).abs() < 1e-9, "{quad:?}");
+    assert!((turn(quad[0], quad[3]) - turn(quad[1], quad[2])).abs() < 1e-9 && turn(quad[0], quad[3]) > 0.0);
+    assert!((quad[0].z - quad[3].z).abs() < 1e-9 && ((quad[0].z - quad[1].z).abs() - 28.6).abs() < 1e-9);
+    // Its middle: half-way round (-16.5 degrees) and half-way up (z 17.3), where the material is tested.
+    let middle = band_middle(quad, origin, direction);
+    let half = 0.5 * gap;
+    assert!(middle.distance(DVec3::new(3.75 * half.cos(), 3.75 * half.sin(), 17.3)) < 1e-9, "{middle:?}");
+    // Not across the material (an edge on the rim), wider than the patch's reach, of two patches, or of a plane:
+    // no band.
+    let rim = [edges[0].clone(), LooseEdge { open: false, ..edges[1].clone() }];
+    assert!(ruling_gaps(&rim).is_empty());
+    let far = [ruling(2, 3.75, 0.0, (3.0, 31.6), -1.0), ruling(2, 3.75, -2.5, (31.6, 3.0), 1.0)];
+    assert!(ruling_gaps(&far).is_empty(), "3.75 x 2.5 = 9.4 past the reach of 9");
+    let two = [edges[0].clone(), LooseEdge { patch: 3, ..edges[1].clone() }];
+    assert!(ruling_gaps(&two).is_empty());
+    let freeform = edges.clone().map(|e| LooseEdge { freeform: true, ..e });
+    assert!(ruling_gaps(&freeform).is_empty());
+    let flat = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(0, 2.0, 52.0, 1.0, (60.0, 0.0), -DVec3::X)];
+    assert!(ruling_gaps(&flat).is_empty());
 }

@@ -128,7 +128,7 @@ pub(super) fn grow<K: Kernel>(
         };
         grows.push(grow);
     }
-    let (steps, bridged) = step_quads(&open_edges, patches, tally);
+    let (steps, bridged) = step_quads(&open_edges, patches, solids, pass == Pass::Joints, tally);
     let planned: Vec<Planned> =
         grows.into_iter().enumerate().filter(|(k, _)| !bridged.contains(k)).filter_map(|(_, g)| g).collect();
     if pass != Pass::Joints && planned.is_empty() && steps.is_empty() {
@@ -220,10 +220,17 @@ struct OpenEdge<'a> {
     open: bool,
 }
 
-/// The quads bridging open edges across thickness steps (`bridge::step_bridges`), each owned by its `owner`
-/// edge's patch, with its joint key and the lengths of both edges; and the free edges (indices) bridged. The
-/// edges that found no partner and no bridge are tallied as having no partner.
-fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) -> (Vec<StepQuad>, BTreeSet<usize>) {
+/// The quads bridging open edges across thickness steps (`bridge::step_bridges`) and, with `gaps` (the first
+/// pass), across gaps in a tube's own surface (`bridge::ruling_gaps`), each owned by its `owner` edge's patch,
+/// with its joint key and the lengths of both edges; and the free edges (indices) bridged. The edges that found
+/// no partner and no bridge are tallied as having no partner.
+fn step_quads(
+    open: &[OpenEdge],
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+    gaps: bool,
+    tally: &mut JointTally,
+) -> (Vec<StepQuad>, BTreeSet<usize>) {
     let edges: Vec<bridge::LooseEdge> = open
         .iter()
         .map(|e| {
@@ -234,6 +241,8 @@ fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) 
                 wall: patches[e.patch].wall,
                 thickness: patches[e.patch].thickness,
                 nearest: e.nearest,
+                reach: patches[e.patch].reach,
+                freeform: patches[e.patch].freeform,
                 open: e.open,
                 points: p.points.clone(),
                 normal: p.normals[mid],
@@ -250,6 +259,21 @@ fn step_quads(open: &[OpenEdge], patches: &[PatchInfo], tally: &mut JointTally) 
         let request = CornerRequest { points: quad, normal, axis };
         let lengths = [open[owner].length, open[other].length];
         out.push((edges[owner].patch, request, (ids, joint::JointKind::Step.name(), "extended"), lengths));
+    }
+    let gaps = if gaps { bridge::ruling_gaps(&edges) } else { Vec::new() };
+    for bridge::StepBridge { owner, other, quad, normal, axis } in gaps {
+        // The band lies in the material where the edges' outsides do, unless the gap holds a slot: its middle.
+        let inside = axis.is_some_and(|[origin, direction]| {
+            solids[patches[edges[owner].patch].solid].contains(bridge::band_middle(&quad, origin, direction))
+        });
+        if bridged[owner] || bridged[other] || !inside {
+            continue;
+        }
+        (bridged[owner], bridged[other]) = (true, true);
+        let patch = edges[owner].patch;
+        let request = CornerRequest { points: quad, normal, axis };
+        let lengths = [open[owner].length, open[other].length];
+        out.push((patch, request, (vec![patch + 1, patch + 1], joint::JointKind::Step.name(), "extended"), lengths));
     }
     for (e, _) in open.iter().zip(&bridged).filter(|(e, &b)| !b && e.open && e.nearest.is_infinite()) {
         tally.add((vec![e.patch + 1], "none", "no_partner"), e.length);

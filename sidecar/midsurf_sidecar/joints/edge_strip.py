@@ -19,7 +19,7 @@ from OCP.collections import HArray1_gp_Pnt
 from OCP.GC import GC_MakeSegment
 from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
 from OCP.GeomAPI import GeomAPI_Interpolate
-from OCP.gp import gp_Ax2, gp_Circ, gp_Dir, gp_Pln, gp_Pnt, gp_Vec
+from OCP.gp import gp_Ax2, gp_Ax3, gp_Circ, gp_Cylinder, gp_Dir, gp_Pln, gp_Pnt, gp_Vec
 from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
@@ -255,12 +255,47 @@ def _coaxial_band(points: list[Vec], axis: tuple[Vec, Vec]) -> TopoDS_Face:
     `axis` and turning counter-clockwise about its direction through the same angle: a band of a cone, a
     cylinder or an annulus, bounded by exact circles so that the fuse shares them with the patches they lie on."""
     origin, direction = axis
+    band = _on_one_cylinder(points, origin, direction)
+    if band is not None:
+        return band
     first = _arc(points[0], points[3], origin, direction)
     second = _arc(points[1], points[2], origin, direction)
     result = BRepFill.Face_s(first, second)
     if result.IsNull() or not BRepCheck_Analyzer(result).IsValid():
         raise KernelError("the band between two coaxial arcs is not valid")
     return result
+
+
+def _on_one_cylinder(points: list[Vec], origin: Vec, direction: Vec) -> TopoDS_Face | None:
+    """The band as a face of the cylinder both arcs lie on, when they have one radius and lie at two heights (a
+    gap in a cylindrical patch's own surface), so that it merges into the patch; None otherwise. A ruled face
+    between two arcs of one cylinder is a B-spline, which no merge recognises."""
+    (centre_a, radial_a, radius_a), (centre_b, _, radius_b) = _circle(points[0], origin, direction), _circle(
+        points[1], origin, direction
+    )
+    height = dot(sub(centre_b, centre_a), direction)
+    if abs(radius_a - radius_b) > CONFUSION or abs(height) <= CONFUSION:
+        return None
+    across = cross(direction, radial_a)
+    towards = sub(points[3], add_scaled(origin, direction, dot(sub(points[3], origin), direction)))
+    angle = math.atan2(dot(towards, across), dot(towards, radial_a)) % (2.0 * math.pi)
+    frame = gp_Ax3(gp_Pnt(*centre_a), gp_Dir(*direction), gp_Dir(*radial_a))
+    low, high = min(0.0, height), max(0.0, height)
+    maker = BRepBuilderAPI_MakeFace(gp_Cylinder(frame, radius_a), 0.0, angle, low, high)
+    if not maker.IsDone() or not BRepCheck_Analyzer(maker.Face()).IsValid():
+        return None
+    return maker.Face()
+
+
+def _circle(point: Vec, origin: Vec, direction: Vec) -> tuple[Vec, Vec, float]:
+    """(centre, unit radial direction, radius) of the circle about the axis (origin, unit direction) through
+    `point`."""
+    centre = add_scaled(origin, direction, dot(sub(point, origin), direction))
+    radial = sub(point, centre)
+    radius = norm(radial)
+    if radius <= CONFUSION:
+        raise KernelError("an arc of a step bridge has no radius")
+    return centre, scale(radial, 1.0 / radius), radius
 
 
 def _arc(start: Vec, end: Vec, origin: Vec, direction: Vec) -> TopoDS_Shape:
