@@ -208,10 +208,21 @@ impl FaceGraph {
 
     /// Faces adjacent to `face` through an edge (excluding itself), sorted and deduplicated.
     pub fn neighbours(&self, face: FaceId) -> Vec<FaceId> {
+        self.neighbours_through(face, |_| true)
+    }
+
+    /// Faces adjacent to `face` through a smooth (tangent) edge, sorted and deduplicated: where its surface runs
+    /// on into another face's.
+    pub fn smooth_neighbours(&self, face: FaceId) -> Vec<FaceId> {
+        self.neighbours_through(face, |e| e.convexity == Convexity::Smooth)
+    }
+
+    fn neighbours_through(&self, face: FaceId, through: impl Fn(&Edge) -> bool) -> Vec<FaceId> {
         let mut out: Vec<FaceId> = self.faces[face]
             .loops
             .iter()
             .flatten()
+            .filter(|&&e| through(&self.edges[e]))
             .flat_map(|&e| self.edges[e].faces.iter().copied())
             .filter(|&f| f != face)
             .collect();

@@ -1,8 +1,10 @@
 //! Pairs that continue each other: the same wall run on across smooth edges, split into faces of different
 //! surfaces (a vault and its dome), whose patches must meet edge to edge.
 
+use std::collections::BTreeMap;
+
 use super::{Pair, PairKind, Thickness};
-use crate::model::face_graph::{Convexity, FaceGraph, FaceId};
+use crate::model::face_graph::{FaceGraph, FaceId};
 use crate::model::tolerance::SAME_THICKNESS;
 use crate::model::union_find::{find, union};
 
@@ -15,16 +17,7 @@ use crate::model::union_find::{find, union};
 /// so is a chain whose means drift past one thickness link by link (a taper keeps each pair's own).
 pub fn share_continued_thickness(graph: &FaceGraph, pairs: &mut [Pair]) {
     let n = graph.faces.len();
-    let mut smooth: Vec<Vec<FaceId>> = vec![Vec::new(); n];
-    for edge in graph.edges.iter().filter(|e| e.convexity == Convexity::Smooth) {
-        for &a in &edge.faces {
-            smooth[a].extend(edge.faces.iter().copied().filter(|&b| b != a));
-        }
-    }
-    for list in &mut smooth {
-        list.sort_unstable();
-        list.dedup();
-    }
+    let smooth: Vec<Vec<FaceId>> = (0..n).map(|f| graph.smooth_neighbours(f)).collect();
     let mut pairs_of: Vec<Vec<usize>> = vec![Vec::new(); n];
     for (i, p) in pairs.iter().enumerate() {
         pairs_of[p.faces[0]].push(i);
@@ -49,7 +42,7 @@ pub fn share_continued_thickness(graph: &FaceGraph, pairs: &mut [Pair]) {
             }
         }
     }
-    let mut chains: std::collections::BTreeMap<usize, Vec<usize>> = std::collections::BTreeMap::new();
+    let mut chains: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for i in 0..pairs.len() {
         let r = find(&mut root, i);
         chains.entry(r).or_default().push(i);

@@ -262,11 +262,14 @@ fn step_quads(
     }
     let gaps = if gaps { bridge::ruling_gaps(&edges) } else { Vec::new() };
     for bridge::StepBridge { owner, other, quad, normal, axis } in gaps {
+        if bridged[owner] || bridged[other] {
+            continue;
+        }
         // The band lies in the material where the edges' outsides do, unless the gap holds a slot: its middle.
         let inside = axis.is_some_and(|[origin, direction]| {
             solids[patches[edges[owner].patch].solid].contains(bridge::band_middle(&quad, origin, direction))
         });
-        if bridged[owner] || bridged[other] || !inside {
+        if !inside {
             continue;
         }
         (bridged[owner], bridged[other]) = (true, true);

@@ -270,15 +270,11 @@ def _on_one_cylinder(points: list[Vec], origin: Vec, direction: Vec) -> TopoDS_F
     """The band as a face of the cylinder both arcs lie on, when they have one radius and lie at two heights (a
     gap in a cylindrical patch's own surface), so that it merges into the patch; None otherwise. A ruled face
     between two arcs of one cylinder is a B-spline, which no merge recognises."""
-    (centre_a, radial_a, radius_a), (centre_b, _, radius_b) = _circle(points[0], origin, direction), _circle(
-        points[1], origin, direction
-    )
+    centre_a, radial_a, radius_a, angle = _turn(points[0], points[3], origin, direction)
+    centre_b, _, radius_b, _ = _turn(points[1], points[2], origin, direction)
     height = dot(sub(centre_b, centre_a), direction)
     if abs(radius_a - radius_b) > CONFUSION or abs(height) <= CONFUSION:
         return None
-    across = cross(direction, radial_a)
-    towards = sub(points[3], add_scaled(origin, direction, dot(sub(points[3], origin), direction)))
-    angle = math.atan2(dot(towards, across), dot(towards, radial_a)) % (2.0 * math.pi)
     frame = gp_Ax3(gp_Pnt(*centre_a), gp_Dir(*direction), gp_Dir(*radial_a))
     low, high = min(0.0, height), max(0.0, height)
     maker = BRepBuilderAPI_MakeFace(gp_Cylinder(frame, radius_a), 0.0, angle, low, high)
@@ -287,20 +283,17 @@ def _on_one_cylinder(points: list[Vec], origin: Vec, direction: Vec) -> TopoDS_F
     return maker.Face()
 
 
-def _circle(point: Vec, origin: Vec, direction: Vec) -> tuple[Vec, Vec, float]:
-    """(centre, unit radial direction, radius) of the circle about the axis (origin, unit direction) through
-    `point`."""
-    centre = add_scaled(origin, direction, dot(sub(point, origin), direction))
-    radial = sub(point, centre)
-    radius = norm(radial)
-    if radius <= CONFUSION:
-        raise KernelError("an arc of a step bridge has no radius")
-    return centre, scale(radial, 1.0 / radius), radius
-
-
 def _arc(start: Vec, end: Vec, origin: Vec, direction: Vec) -> TopoDS_Shape:
     """The edge of the circle about the axis (origin, unit direction) through `start`, from it counter-clockwise
     about the direction to the angle of `end`."""
+    centre, radial, radius, angle = _turn(start, end, origin, direction)
+    circle = gp_Circ(gp_Ax2(gp_Pnt(*centre), gp_Dir(*direction), gp_Dir(*radial)), radius)
+    return BRepBuilderAPI_MakeEdge(circle, 0.0, angle).Edge()
+
+
+def _turn(start: Vec, end: Vec, origin: Vec, direction: Vec) -> tuple[Vec, Vec, float, float]:
+    """(centre, radial vector, radius, angle) of the circle about the axis (origin, unit direction) through
+    `start`, the angle counter-clockwise about the direction from `start` to `end` (0..2 pi)."""
     centre = add_scaled(origin, direction, dot(sub(start, origin), direction))
     radial = sub(start, centre)
     radius = norm(radial)
@@ -309,8 +302,7 @@ def _arc(start: Vec, end: Vec, origin: Vec, direction: Vec) -> TopoDS_Shape:
     across = cross(direction, scale(radial, 1.0 / radius))
     towards = sub(end, add_scaled(origin, direction, dot(sub(end, origin), direction)))
     angle = math.atan2(dot(towards, across), dot(towards, scale(radial, 1.0 / radius))) % (2.0 * math.pi)
-    circle = gp_Circ(gp_Ax2(gp_Pnt(*centre), gp_Dir(*direction), gp_Dir(*radial)), radius)
-    return BRepBuilderAPI_MakeEdge(circle, 0.0, angle).Edge()
+    return centre, radial, radius, angle
 
 
 def _corner(points: list[Vec]) -> TopoDS_Face:
