@@ -73,3 +73,37 @@ def test_a_face_without_a_wire_is_named_broken(tmp_path):
     writer.Transfer(bounded, STEPControl_AsIs)
     writer.Write(str(tmp_path / "box.step"))
     assert readback.check_written(str(tmp_path / "box.step"), bounded).valid
+
+
+def test_a_broken_face_read_back_in_another_order_names_the_face_it_lies_on(monkeypatch):
+    # As many faces read as written, but in another order (a reader may take shells apart and put them back
+    # otherwise): the broken face is named by the written face it lies on, not by its place in the file.
+    from OCP.IFSelect import IFSelect_RetDone
+
+    faces = box_faces()
+    written = shells_of([faces[:3], faces[3:]])
+    back = shells_of([faces[3:], faces[:3]])
+    broken = faces[4]
+
+    class Reader:
+        def ReadFile(self, path):
+            return IFSelect_RetDone
+
+        def TransferRoots(self):
+            pass
+
+        def OneShape(self):
+            return back
+
+    class Check:
+        def __init__(self, shape):
+            self.shape = shape
+
+        def IsValid(self):
+            return not (self.shape.IsSame(back) or self.shape.IsSame(broken))
+
+    monkeypatch.setattr(readback, "STEPControl_Reader", Reader)
+    monkeypatch.setattr(readback, "BRepCheck_Analyzer", Check)
+    check = readback.check_written("unused.step", written)
+    assert not check.valid
+    assert check.invalid == [indexed_map(written, TopAbs_FACE).FindIndex(broken) - 1]

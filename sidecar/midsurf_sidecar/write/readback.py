@@ -3,7 +3,8 @@
 A face that fails BRepCheck in memory is often repaired by the reader's healing (its pcurves, its tolerances);
 one that still fails once read back is broken for every user of the file. The check names those faces by their
 index in the written shape: the reader's order when it read as many faces as were written (manifold shells read
-back as written), else the face with the same centroid and area.
+back as written) when the broken face lies on the written face of that index, else the written face its edges
+lie on.
 """
 
 from dataclasses import dataclass
@@ -57,18 +58,24 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
     dropped = max(len(read_empty), own.Size() - len(back_faces), 0)
     unnamed = dropped - len(read_empty)
     lost = read_empty | unbounded
-    if len(back_faces) == own.Size():
-        # Manifold shells read back as written, face for face in the same order; a broken face's area and
-        # centroid cannot be trusted to find it.
-        return Check(False, sorted(set(bad) | lost), dropped, unnamed)
     written = [own.FindKey(j + 1) for j in range(own.Size())]
     boxes = [_box(face) for face in written]
     extents = (max(abs(c) for c in box) for box in boxes)
     size = max((e for e in extents if e < UNBOUNDED_BOX), default=1.0)
     reach = READBACK_MATCH * max(size, 1.0)
+    same_count = len(back_faces) == own.Size()
     invalid = set(lost)
     for k in bad:
+        # As many faces read as written: often face for face in the written order, but a reader may take the
+        # shells apart and put their faces back in another order. The face in the same place is taken when the
+        # broken face lies on it, else the face it lies on (naming another face would leave a sound face out
+        # and keep the broken one, round after round); the same place again when it lies on none.
+        if same_count and _holds(written[k], back_faces[k], reach):
+            invalid.add(k)
+            continue
         origin = _origin(back_faces[k], written, boxes, reach)
+        if origin is None and same_count:
+            origin = k
         if origin is not None:
             invalid.add(origin)
     return Check(False, sorted(invalid), dropped, unnamed)
@@ -111,6 +118,12 @@ def _origin(face: TopoDS_Shape, written: list[TopoDS_Shape], boxes: list[tuple[f
     if best_on[0][0] * 2 >= len(points):
         return best_on[2]
     return max(scored, key=lambda s: s[1])[2]
+
+
+def _holds(written: TopoDS_Shape, face: TopoDS_Shape, reach: float) -> bool:
+    """Whether at least half the midpoints of `face`'s edges lie on `written` (within `reach`), as in `_origin`."""
+    points = _edge_midpoints(face)
+    return bool(points) and 2 * sum(_distance_to(written, p) <= reach for p in points) >= len(points)
 
 
 # The broken face's edges sampled for its origin: a few suffice, the longest say the most.
