@@ -156,35 +156,27 @@ const COAXIAL_SHARE: f64 = 1e-3;
 /// rounded corners) the ramp is a band of a cone. Each stretch of an edge is bridged once, nearest pairs first,
 /// sorted by (owner, other).
 pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
-    let parallel = STEP_PARALLEL_DEG.to_radians().cos();
-    let courses: Vec<Option<Course>> = edges.iter().map(|e| course(&e.points)).collect();
-    let mut candidates: Vec<(f64, StepBridge)> = Vec::new();
-    for i in 0..edges.len() {
-        for j in i + 1..edges.len() {
-            let (ei, ej) = (&edges[i], &edges[j]);
-            if ei.patch == ej.patch
-                || !may_bridge(ei, ej)
-                || ei.normal.dot(ej.normal).abs() < parallel
-                || ei.outward.dot(ej.outward) > -parallel
-            {
-                continue;
-            }
-            // Measured from the thinner edge (the first on a tie), which carries a ramp.
-            let (thin, thick) = if ej.thickness < ei.thickness { (j, i) } else { (i, j) };
-            let found = match (courses[thin], courses[thick]) {
-                (Some(a @ Course::Line { .. }), Some(b @ Course::Line { .. })) => {
-                    line_bridge(edges, (thin, a), (thick, b), i, parallel)
-                }
-                (Some(a @ Course::Arc { .. }), Some(b @ Course::Arc { .. })) => {
-                    arc_bridge(edges, (thin, a), (thick, b), i, parallel)
-                }
-                _ => None,
-            };
-            candidates.extend(found);
+    let (courses, candidates) = nearest_first(edges, |i, j, courses, parallel| {
+        let (ei, ej) = (&edges[i], &edges[j]);
+        if ei.patch == ej.patch
+            || !may_bridge(ei, ej)
+            || ei.normal.dot(ej.normal).abs() < parallel
+            || ei.outward.dot(ej.outward) > -parallel
+        {
+            return None;
         }
-    }
-    let key = |b: &StepBridge| (b.owner.min(b.other), b.owner.max(b.other));
-    candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then(key(&x.1).cmp(&key(&y.1))));
+        // Measured from the thinner edge (the first on a tie), which carries a ramp.
+        let (thin, thick) = if ej.thickness < ei.thickness { (j, i) } else { (i, j) };
+        match (courses[thin], courses[thick]) {
+            (Some(a @ Course::Line { .. }), Some(b @ Course::Line { .. })) => {
+                line_bridge(edges, (thin, a), (thick, b), i, parallel)
+            }
+            (Some(a @ Course::Arc { .. }), Some(b @ Course::Arc { .. })) => {
+                arc_bridge(edges, (thin, a), (thick, b), i, parallel)
+            }
+            _ => None,
+        }
+    });
     // Per edge, the stretches (along its own course) already bridged: a long edge facing several shorter ones
     // (the levels of a step split by a third) is bridged once per stretch.
     let mut used: Vec<Vec<(f64, f64)>> = vec![Vec::new(); edges.len()];
@@ -320,59 +312,52 @@ fn arc_bridge(
 /// [a(s0), a(s1), b(s1), b(s0)] with `axis` turning counter-clockwise from a to b: `_coaxial_band`'s arcs
 /// a(s0) -> b(s0) and a(s1) -> b(s1).
 pub fn ruling_gaps(edges: &[LooseEdge]) -> Vec<StepBridge> {
-    let parallel = STEP_PARALLEL_DEG.to_radians().cos();
-    let courses: Vec<Option<Course>> = edges.iter().map(|e| course(&e.points)).collect();
-    let mut candidates: Vec<(f64, StepBridge)> = Vec::new();
-    for i in 0..edges.len() {
-        for j in i + 1..edges.len() {
-            let (ei, ej) = (&edges[i], &edges[j]);
-            if ei.patch != ej.patch || ei.freeform || !ei.open || !ej.open {
-                continue;
-            }
-            let (
-                Some(Course::Line { start: a, direction: u, length: la }),
-                Some(Course::Line { start: b, direction: v, length: lb }),
-            ) = (courses[i], courses[j])
-            else {
-                continue;
-            };
-            if u.dot(v).abs() < parallel {
-                continue;
-            }
-            // In the plane square to the rulings: b's line relative to a's, and the normals there.
-            let d = (b - a).reject_from_normalized(u);
-            let (na, nb) = (ei.normal.reject_from_normalized(u), ej.normal.reject_from_normalized(u));
-            if na.length() < parallel || nb.length() < parallel {
-                continue;
-            }
-            let (na, nb) = (na.normalize(), nb.normalize());
-            // One cylinder: a - r na = b - r nb for one signed radius r.
-            let turn = nb - na;
-            if turn.length_squared() <= COAXIAL_SHARE * COAXIAL_SHARE {
-                continue;
-            }
-            let r = d.dot(turn) / turn.length_squared();
-            if (d - turn * r).length() > COAXIAL_SHARE * r.abs() {
-                continue;
-            }
-            if ei.outward.dot(d) <= 0.0 || ej.outward.dot(d) >= 0.0 {
-                continue;
-            }
-            let center = a - na * r;
-            let (from, to) = (a - center, a + d - center);
-            let gap = r.abs() * from.angle_between(to);
-            if gap > ei.reach.min(ej.reach) {
-                continue;
-            }
-            let Some((s0, s1)) = shared_stretch((a, u, la), (b, v, lb)) else { continue };
-            let direction = if from.cross(to).dot(u) > 0.0 { u } else { -u };
-            let on_a = |s: f64| a + u * s;
-            let quad = [on_a(s0), on_a(s1), on_a(s1) + d, on_a(s0) + d];
-            let bridge = StepBridge { owner: i, other: j, quad, normal: ei.normal, axis: Some([center, direction]) };
-            candidates.push((gap, bridge));
+    let (_, candidates) = nearest_first(edges, |i, j, courses, parallel| {
+        let (ei, ej) = (&edges[i], &edges[j]);
+        if ei.patch != ej.patch || ei.freeform || !ei.open || !ej.open {
+            return None;
         }
-    }
-    candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then((x.1.owner, x.1.other).cmp(&(y.1.owner, y.1.other))));
+        let (
+            Some(Course::Line { start: a, direction: u, length: la }),
+            Some(Course::Line { start: b, direction: v, length: lb }),
+        ) = (courses[i], courses[j])
+        else {
+            return None;
+        };
+        if u.dot(v).abs() < parallel {
+            return None;
+        }
+        // In the plane square to the rulings: b's line relative to a's, and the normals there.
+        let d = (b - a).reject_from_normalized(u);
+        let (na, nb) = (ei.normal.reject_from_normalized(u), ej.normal.reject_from_normalized(u));
+        if na.length() < parallel || nb.length() < parallel {
+            return None;
+        }
+        let (na, nb) = (na.normalize(), nb.normalize());
+        // One cylinder: a - r na = b - r nb for one signed radius r.
+        let turn = nb - na;
+        if turn.length_squared() <= COAXIAL_SHARE * COAXIAL_SHARE {
+            return None;
+        }
+        let r = d.dot(turn) / turn.length_squared();
+        if (d - turn * r).length() > COAXIAL_SHARE * r.abs() {
+            return None;
+        }
+        if ei.outward.dot(d) <= 0.0 || ej.outward.dot(d) >= 0.0 {
+            return None;
+        }
+        let center = a - na * r;
+        let (from, to) = (a - center, a + d - center);
+        let gap = r.abs() * from.angle_between(to);
+        if gap > ei.reach.min(ej.reach) {
+            return None;
+        }
+        let (s0, s1) = shared_stretch((a, u, la), (b, v, lb))?;
+        let direction = if from.cross(to).dot(u) > 0.0 { u } else { -u };
+        let on_a = |s: f64| a + u * s;
+        let quad = [on_a(s0), on_a(s1), on_a(s1) + d, on_a(s0) + d];
+        Some((gap, StepBridge { owner: i, other: j, quad, normal: ei.normal, axis: Some([center, direction]) }))
+    });
     let mut used = vec![false; edges.len()];
     let mut out = Vec::new();
     for (_, bridge) in candidates {
@@ -383,6 +368,25 @@ pub fn ruling_gaps(edges: &[LooseEdge]) -> Vec<StepBridge> {
     }
     out.sort_by_key(|b| (b.owner, b.other));
     out
+}
+
+/// The edges' courses, and the bridges `find` makes for each pair of edges i < j (given the courses and the
+/// cosine of `STEP_PARALLEL_DEG`) with their gaps, nearest first, then by the pair (lower edge first).
+fn nearest_first(
+    edges: &[LooseEdge],
+    find: impl Fn(usize, usize, &[Option<Course>], f64) -> Option<(f64, StepBridge)>,
+) -> (Vec<Option<Course>>, Vec<(f64, StepBridge)>) {
+    let parallel = STEP_PARALLEL_DEG.to_radians().cos();
+    let courses: Vec<Option<Course>> = edges.iter().map(|e| course(&e.points)).collect();
+    let mut candidates: Vec<(f64, StepBridge)> = Vec::new();
+    for i in 0..edges.len() {
+        for j in i + 1..edges.len() {
+            candidates.extend(find(i, j, &courses, parallel));
+        }
+    }
+    let key = |b: &StepBridge| (b.owner.min(b.other), b.owner.max(b.other));
+    candidates.sort_by(|x, y| x.0.total_cmp(&y.0).then(key(&x.1).cmp(&key(&y.1))));
+    (courses, candidates)
 }
 
 /// The stretch (from, to, along the first line from its start) two parallel lines (start, unit direction,
