@@ -5,6 +5,7 @@ pub mod clip;
 pub mod coverage;
 pub mod inside;
 pub mod ray;
+pub mod triangle_index;
 
 use glam::DVec3;
 

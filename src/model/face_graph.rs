@@ -94,6 +94,15 @@ pub struct Mesh {
     pub vertices: Vec<DVec3>,
     pub normals: Vec<DVec3>,
     pub triangles: Vec<[u32; 3]>,
+    #[serde(skip)]
+    pub index: crate::geom::triangle_index::TriangleIndex,
+}
+
+impl Mesh {
+    /// The indices of the triangles whose boxes meet the box `lo`..`hi`.
+    pub fn triangles_meeting(&self, lo: DVec3, hi: DVec3) -> impl Iterator<Item = usize> + '_ {
+        self.index.meeting(&self.vertices, &self.triangles, lo, hi)
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

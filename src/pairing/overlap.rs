@@ -119,15 +119,8 @@ const SAMPLES: [[f64; 3]; 4] = [
 
 pub fn sampled(from: &Face, to: &Face, max_distance: f64, max_angle: f64) -> Option<Sampled> {
     let (fm, tm) = (from.mesh.as_ref()?, to.mesh.as_ref()?);
-    let target: Vec<([DVec3; 3], DVec3)> = tm
-        .triangles
-        .iter()
-        .map(|t| {
-            let p = t.map(|i| tm.vertices[i as usize]);
-            (p, (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero())
-        })
-        .collect();
     let min_cos = max_angle.cos();
+    let slack = DVec3::splat(1e-9 * (1.0 + max_distance));
     let mut out = Sampled { hit_area: 0.0, from_area: 0.0, distances: Vec::new() };
     for t in &fm.triangles {
         let p = t.map(|i| fm.vertices[i as usize]);
@@ -138,10 +131,14 @@ pub fn sampled(from: &Face, to: &Face, max_distance: f64, max_angle: f64) -> Opt
         for w in SAMPLES {
             let origin = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
             let dir = -(n[0] * w[0] + n[1] * w[1] + n[2] * w[2]).normalize_or_zero();
-            let nearest = target
-                .iter()
-                .filter(|(_, tn)| tn.dot(dir) >= min_cos)
-                .filter_map(|(tri, _)| hit_triangle(origin, dir, *tri))
+            // A hit within max_distance lies in the box of the ray's first max_distance.
+            let end = origin + dir * max_distance;
+            let (lo, hi) = (origin.min(end) - slack, origin.max(end) + slack);
+            let nearest = tm
+                .triangles_meeting(lo, hi)
+                .map(|k| tm.triangles[k].map(|i| tm.vertices[i as usize]))
+                .filter(|tri| (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero().dot(dir) >= min_cos)
+                .filter_map(|tri| hit_triangle(origin, dir, tri))
                 .filter(|&d| d <= max_distance)
                 .fold(f64::INFINITY, f64::min);
             if nearest.is_finite() {
@@ -152,3 +149,4 @@ pub fn sampled(from: &Face, to: &Face, max_distance: f64, max_angle: f64) -> Opt
     }
     Some(out)
 }
+
