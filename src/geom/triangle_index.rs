@@ -69,7 +69,13 @@ mod tests {
         found.sort();
         assert_eq!(found, vec![3, 4]);
         // Touching a box's face counts; a box beside every triangle finds none.
-        assert_eq!(index.meeting(&vertices, &triangles, DVec3::new(91.0, 0.0, 0.0), DVec3::new(95.0, 1.0, 0.0)).count(), 1);
-        assert_eq!(index.meeting(&vertices, &triangles, DVec3::new(2.0, 0.0, 0.0), DVec3::new(9.0, 1.0, 0.0)).count(), 0);
+        assert_eq!(
+            index.meeting(&vertices, &triangles, DVec3::new(91.0, 0.0, 0.0), DVec3::new(95.0, 1.0, 0.0)).count(),
+            1
+        );
+        assert_eq!(
+            index.meeting(&vertices, &triangles, DVec3::new(2.0, 0.0, 0.0), DVec3::new(9.0, 1.0, 0.0)).count(),
+            0
+        );
     }
 }

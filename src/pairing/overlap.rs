@@ -149,4 +149,3 @@ pub fn sampled(from: &Face, to: &Face, max_distance: f64, max_angle: f64) -> Opt
     }
     Some(out)
 }
-
