@@ -11,7 +11,7 @@ use glam::DVec3;
 use rstar::{Envelope, RTree, RTreeObject, SelectionFunction, AABB};
 
 use super::ray::hit_triangle;
-use crate::model::face_graph::Face;
+use crate::model::face_graph::{Face, Mesh};
 
 struct Triangle {
     corners: [DVec3; 3],
@@ -57,9 +57,14 @@ impl SolidMesh {
     /// The material bounded by `faces` (of one solid, or of the solids of a body without the faces they
     /// share); None when a face was described without a mesh.
     pub fn of_faces<'a>(faces: impl Iterator<Item = &'a Face>) -> Option<SolidMesh> {
+        let meshes: Option<Vec<&Mesh>> = faces.map(|face| face.mesh.as_ref()).collect();
+        Some(SolidMesh::of_meshes(meshes?))
+    }
+
+    /// The triangles of `meshes` (also one face's alone: `Mesh::nearest_hit`).
+    pub fn of_meshes<'a>(meshes: impl IntoIterator<Item = &'a Mesh>) -> SolidMesh {
         let mut triangles = Vec::new();
-        for face in faces {
-            let mesh = face.mesh.as_ref()?;
+        for mesh in meshes {
             for t in &mesh.triangles {
                 let corners = t.map(|i| mesh.vertices[i as usize]);
                 let lo = corners[0].min(corners[1]).min(corners[2]);
@@ -70,7 +75,7 @@ impl SolidMesh {
         let lo = triangles.iter().map(|t| DVec3::from(t.envelope.lower())).fold(DVec3::INFINITY, DVec3::min);
         let hi = triangles.iter().map(|t| DVec3::from(t.envelope.upper())).fold(DVec3::NEG_INFINITY, DVec3::max);
         let margin = BOX_MARGIN * (hi - lo).length();
-        Some(SolidMesh { tree: Arc::new(RTree::bulk_load(triangles)), lo, hi, margin })
+        SolidMesh { tree: Arc::new(RTree::bulk_load(triangles)), lo, hi, margin }
     }
 
     pub fn contains(&self, p: DVec3) -> bool {
@@ -85,6 +90,19 @@ impl SolidMesh {
     /// Distance from `p` along the unit direction `dir` to the nearest mesh triangle, if within `reach`.
     pub fn exit(&self, p: DVec3, dir: DVec3, reach: f64) -> Option<f64> {
         self.hits(p, dir, reach).filter(|&d| d <= reach).min_by(f64::total_cmp)
+    }
+
+    /// Distance along `dir` (unit) from `p` to the nearest triangle that `accept` takes (by its corners) and
+    /// the ray meets within `reach`. Every triangle whose widened box the segment meets is tried: no parity
+    /// rule here, so a hit within the triangle test's slack is never left out.
+    pub fn nearest_where(&self, p: DVec3, dir: DVec3, reach: f64, accept: impl Fn(&[DVec3; 3]) -> bool) -> Option<f64> {
+        let segment = Segment { origin: p, inverse: dir.recip(), reach, margin: self.margin };
+        self.tree
+            .locate_with_selection_function(segment)
+            .filter(|t| accept(&t.corners))
+            .filter_map(|t| hit_triangle(p, dir, t.corners))
+            .filter(|&d| d <= reach)
+            .min_by(f64::total_cmp)
     }
 
     /// Distances along `dir` (unit) from `p` to every triangle the ray meets within `reach`, sorted, hits
@@ -170,6 +188,7 @@ impl SelectionFunction<Triangle> for Segment {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::face_graph::Surface;
     use crate::synthetic::{self, cuboid};
 
     #[test]
@@ -181,6 +200,31 @@ mod tests {
         assert!(!solid.contains(DVec3::new(5.0, 2.0, 2.5)));
         assert!(!solid.contains(DVec3::new(-0.1, 2.0, 1.0)));
         assert!(!solid.contains(DVec3::new(50.0, 2.0, 1.0)));
+    }
+
+    #[test]
+    fn the_nearest_hit_a_filter_takes_is_the_nearest_of_those_a_scan_finds() {
+        // A finely meshed face (two triangles per quad, 40 x 40) and rays across it at a slant; the filter keeps
+        // the triangles of one diagonal orientation only, so about half the rays' nearest hits change.
+        let plane = Surface::Plane { origin: DVec3::ZERO, normal: DVec3::Z };
+        let face = synthetic::face(plane, 40, |u, v| (DVec3::new(40.0 * u, 40.0 * v, 0.0), DVec3::Z));
+        let mesh = face.mesh.unwrap();
+        // Each quad's first triangle starts along +x, its second along the diagonal.
+        let keep = |t: &[DVec3; 3]| (t[1] - t[0]).y == 0.0;
+        for k in 0..200 {
+            let p = DVec3::new(0.37 + 0.19 * k as f64, 0.53 + 0.17 * k as f64, 1.0 + 0.01 * k as f64);
+            let dir = DVec3::new(0.1, -0.05, -1.0).normalize();
+            let scan = mesh
+                .triangles
+                .iter()
+                .map(|t| t.map(|i| mesh.vertices[i as usize]))
+                .filter(|t| keep(t))
+                .filter_map(|t| crate::geom::ray::hit_triangle(p, dir, t))
+                .filter(|&d| d <= 3.0)
+                .min_by(f64::total_cmp);
+            assert_eq!(mesh.nearest_hit(p, dir, 3.0, keep), scan, "ray {k}");
+        }
+        assert_eq!(mesh.nearest_hit(DVec3::new(5.0, 5.0, 4.0), -DVec3::Z, 3.0, |_| true), None, "beyond the reach");
     }
 
     #[test]

@@ -5,7 +5,6 @@ pub mod clip;
 pub mod coverage;
 pub mod inside;
 pub mod ray;
-pub mod triangle_index;
 
 use glam::DVec3;
 

@@ -4,8 +4,12 @@
 //! algorithms can work on ids and look geometry up by id. Ids are indices into the vectors: stable for a given
 //! input because the sidecar numbers shapes in `TopExp::MapShapes` order.
 
+use std::sync::OnceLock;
+
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
+
+use crate::geom::inside::SolidMesh;
 
 pub type FaceId = usize;
 pub type EdgeId = usize;
@@ -95,13 +99,32 @@ pub struct Mesh {
     pub normals: Vec<DVec3>,
     pub triangles: Vec<[u32; 3]>,
     #[serde(skip)]
-    pub index: crate::geom::triangle_index::TriangleIndex,
+    pub index: TriangleIndex,
 }
 
 impl Mesh {
-    /// The indices of the triangles whose boxes meet the box `lo`..`hi`.
-    pub fn triangles_meeting(&self, lo: DVec3, hi: DVec3) -> impl Iterator<Item = usize> + '_ {
-        self.index.meeting(&self.vertices, &self.triangles, lo, hi)
+    /// Distance along `dir` (unit) from `p` to the nearest triangle of this mesh that `accept` takes and the ray
+    /// meets within `reach` (`SolidMesh::nearest_where`, on an R-tree of the triangles built on first use).
+    pub fn nearest_hit(&self, p: DVec3, dir: DVec3, reach: f64, accept: impl Fn(&[DVec3; 3]) -> bool) -> Option<f64> {
+        self.index.0.get_or_init(|| SolidMesh::of_meshes([self])).nearest_where(p, dir, reach, accept)
+    }
+}
+
+/// A mesh's triangles in an R-tree, made on first use: a perforated skin has tens of thousands of triangles and
+/// every hole's wall casts rays at it. Derived from the mesh: it compares equal to any other and is never
+/// serialized.
+#[derive(Clone, Default)]
+pub struct TriangleIndex(OnceLock<SolidMesh>);
+
+impl PartialEq for TriangleIndex {
+    fn eq(&self, _: &TriangleIndex) -> bool {
+        true
+    }
+}
+
+impl std::fmt::Debug for TriangleIndex {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(if self.0.get().is_some() { "TriangleIndex(built)" } else { "TriangleIndex" })
     }
 }
 

@@ -8,7 +8,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::geom::clip::{signed_area, soup_overlap};
-use crate::geom::{plane_basis, ray::hit_triangle};
+use crate::geom::plane_basis;
 use crate::model::face_graph::{Face, Mesh};
 
 /// The mapped region where two faces overlap.
@@ -120,7 +120,6 @@ const SAMPLES: [[f64; 3]; 4] = [
 pub fn sampled(from: &Face, to: &Face, max_distance: f64, max_angle: f64) -> Option<Sampled> {
     let (fm, tm) = (from.mesh.as_ref()?, to.mesh.as_ref()?);
     let min_cos = max_angle.cos();
-    let slack = DVec3::splat(1e-9 * (1.0 + max_distance));
     let mut out = Sampled { hit_area: 0.0, from_area: 0.0, distances: Vec::new() };
     for t in &fm.triangles {
         let p = t.map(|i| fm.vertices[i as usize]);
@@ -131,16 +130,9 @@ pub fn sampled(from: &Face, to: &Face, max_distance: f64, max_angle: f64) -> Opt
         for w in SAMPLES {
             let origin = p[0] * w[0] + p[1] * w[1] + p[2] * w[2];
             let dir = -(n[0] * w[0] + n[1] * w[1] + n[2] * w[2]).normalize_or_zero();
-            // A hit within max_distance lies in the box of the ray's first max_distance.
-            let end = origin + dir * max_distance;
-            let (lo, hi) = (origin.min(end) - slack, origin.max(end) + slack);
-            let nearest = tm
-                .triangles_meeting(lo, hi)
-                .map(|k| tm.triangles[k].map(|i| tm.vertices[i as usize]))
-                .filter(|tri| (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero().dot(dir) >= min_cos)
-                .filter_map(|tri| hit_triangle(origin, dir, tri))
-                .filter(|&d| d <= max_distance)
-                .fold(f64::INFINITY, f64::min);
+            let facing =
+                |tri: &[DVec3; 3]| (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize_or_zero().dot(dir) >= min_cos;
+            let nearest = tm.nearest_hit(origin, dir, max_distance, facing).unwrap_or(f64::INFINITY);
             if nearest.is_finite() {
                 out.hit_area += weight;
                 out.distances.push((nearest, weight));
