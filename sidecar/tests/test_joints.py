@@ -266,3 +266,52 @@ def test_a_band_between_two_arcs_of_one_cylinder_is_a_face_of_that_cylinder():
     assert surface.GetType() == GeomAbs_Cylinder
     assert surface.Cylinder().Radius() == pytest.approx(3.75, abs=1e-9)
     assert surface_props(band).Mass() == pytest.approx(3.75 * gap * 28.6, rel=1e-9)
+
+
+def test_an_arc_past_the_period_grows_a_strip_the_fuse_keeps_valid():
+    """A tube patch whose u range runs from 1.5 pi to 3 pi, its end circle split at u = 2 pi (where another
+    face touched it): the arc at u 2 pi..3 pi grows a strip of the tube's own cylinder, which OCCT makes at
+    u 0..pi. Fused with the patch, the strip must stay a valid face of positive area: on the patch's very surface
+    object it took the patch's pcurve of their shared edge, a period away from its own wire, and came out
+    inverted (and in a whole part's fuse, deleted the patch face with it)."""
+    import math
+
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeVertex
+    from OCP.BRepAdaptor import BRepAdaptor_Curve2d
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.Geom import Geom_CylindricalSurface
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+    from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
+
+    from midsurf_sidecar.geom.booleans import general_fuse
+    from midsurf_sidecar.geom.topology import surface_props
+    from midsurf_sidecar.joints.edge_strip import strip
+
+    surface = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2.0)
+    tube = BRepBuilderAPI_MakeFace(surface, 1.5 * math.pi, 3.0 * math.pi, 0.0, 5.0, 1e-7).Face()
+    touched = general_fuse([tube, BRepBuilderAPI_MakeVertex(gp_Pnt(2.0, 0.0, 5.0)).Vertex()], 1e-7)
+    tube = TopoDS.Face(touched.Modified(tube).First())
+    arcs = []
+    edges = TopExp_Explorer(tube, TopAbs_EDGE)
+    while edges.More():
+        edge = TopoDS.Edge(edges.Current())
+        pcurve = BRepAdaptor_Curve2d(edge, tube)
+        ends = [pcurve.Value(pcurve.FirstParameter()), pcurve.Value(pcurve.LastParameter())]
+        if all(p.Y() == pytest.approx(5.0) for p in ends):
+            arcs.append((sorted(p.X() for p in ends), edge))
+        edges.Next()
+    spans = [u for span, _ in sorted(arcs, key=lambda a: a[0]) for u in span]
+    assert spans == pytest.approx([1.5 * math.pi, 2.0 * math.pi, 2.0 * math.pi, 3.0 * math.pi])
+    strips = [strip(tube, edge, [1.0] * 5) for _, edge in arcs]
+    fused = general_fuse([tube, *strips], 1e-5).Shape()
+    areas = []
+    faces = TopExp_Explorer(fused, TopAbs_FACE)
+    while faces.More():
+        assert BRepCheck_Analyzer(faces.Current()).IsValid()
+        areas.append(surface_props(faces.Current()).Mass())
+        faces.Next()
+    # The tube (1.5 pi x radius 2 x height 5) and its strips (the same turn, 1 high), none inverted.
+    assert min(areas) > 0.0
+    assert sum(areas) == pytest.approx(1.5 * math.pi * 2.0 * 6.0)

@@ -135,7 +135,17 @@ def _along_cylinder(face: TopoDS_Face, axis: Vec, edge: TopoDS_Shape, sweep: Vec
     if u1 - u0 <= 0.0:
         return None
     v1 = v0 + along
-    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v0, v1), max(v0, v1), CONFUSION)
+    return _band(face, u0, u1, min(v0, v1), max(v0, v1))
+
+
+def _band(face: TopoDS_Face, u0: float, u1: float, v0: float, v1: float) -> TopoDS_Face | None:
+    """The face of `face`'s own surface over u0..u1 x v0..v1, None when the kernel gives up. It is made on a copy
+    of the surface. OCCT moves a u range lying past the period back by one (an arc at u 2pi..3pi becomes
+    0..pi); on the patch's very surface object the fuse would give the strip the pcurve their shared edge has
+    on the patch, a period away from the strip's wire, and the strip would come out of the fuse inverted
+    (negative area, invalid), taking the patch face with it. On a copy, the fuse computes the strip's pcurves
+    anew; unify_same_domain still merges the strip into the patch (it compares the surfaces' geometry)."""
+    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face).Copy(), u0, u1, v0, v1, CONFUSION)
     return maker.Face() if maker.IsDone() else None
 
 
@@ -164,10 +174,8 @@ def _along_meridian(face: TopoDS_Face, edge: TopoDS_Shape, sample, length: float
     if abs(dot(meridian, sample.outward)) < 1.0 - MERIDIAN_ISO:
         return None
     step = length / speed * (1.0 if dot(meridian, sample.outward) > 0.0 else -1.0)
-    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, min(v, v + step), max(v, v + step), CONFUSION)
-    if not maker.IsDone() or not BRepCheck_Analyzer(maker.Face()).IsValid():
-        return None
-    return maker.Face()
+    made = _band(face, u0, u1, min(v, v + step), max(v, v + step))
+    return made if made is not None and BRepCheck_Analyzer(made).IsValid() else None
 
 
 # A curved edge of a cylindrical patch whose outward directions mostly (the median) lie within this angle of
