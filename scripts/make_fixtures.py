@@ -838,6 +838,24 @@ def rib_through_boss() -> Fixture:
     return Fixture(part, volume, 16)
 
 
+def rib_side_boss() -> Fixture:
+    """Plate 100 x 60 x 2 with a rib 2 thick and 15 high along y (x 49..51, z 2..17, the full 60), and a screw
+    boss (outside R 5, bore R 3, z 2..14) on the axis (44.8, 30) merged into the rib's side: its outside runs
+    0.2 into the rib, short of the rib's mid-plane, and its bore stays clear of it. The class: a boss or a rib
+    merging into one side of a wall (moulded housings), which stops that skin around the merge (a bay 5.43 wide
+    and 12 high in the rib's left skin, wider than t_max) while the other skin runs on. Mid-surface: plate
+    z = 1, the rib x = 50 whole (its patch runs on across the bay), the boss's cylinder R 4. Faces: 14. Volume:
+    the plate, the rib, and the boss's ring less the segment of its outer disc inside the rib (R 5, 4.2 from
+    the centre), 12 high.
+    """
+    part = box(0, 0, 0, 100, 60, 2) + box(49, 0, 2, 2, 60, 15) + cylinder_z(44.8, 30, 2, 5, 12)
+    part = single_solid(part - cylinder_z(44.8, 30, 2, 3, 12))
+    r, d = 5.0, 4.2
+    segment = r * r * math.acos(d / r) - d * math.sqrt(r * r - d * d)
+    volume = 100 * 60 * 2 + 2 * 60 * 15 + 12 * (math.pi * (r * r - 3.0**2) - segment)
+    return Fixture(part, volume, 14)
+
+
 def vault_off_centre() -> Fixture:
     """A vault 40 long (y) closed at one end by a quarter dome, standing on z = 0: outer skin a half-cylinder R 20
     on the axis x = 20, z = 0 and a quarter sphere R 20 centred at (20, 40, 0); inner skin a cylinder R 18 and a
@@ -900,6 +918,7 @@ PARTS: list[Callable[[], Fixture]] = [
     plates_butted,
     rib_boss_bore,
     rib_through_boss,
+    rib_side_boss,
     vault_off_centre,
 ]
 

@@ -190,6 +190,11 @@ AXIAL_DEG = 45.0
 # A piece of a patch face cut off by the solid's boundary is enclosed (a filled hole of the wall, which the
 # patch spans on purpose) when all of its boundary but this share of it is the cut.
 ENCLOSED_SHARE = 1e-6
+# An uncovered piece of a clipped mid-patch face whose boundary runs along covered pieces for at least this share
+# of its length is a bay cut into the partners' footprint, flanked by the wall on opposite sides
+# (face_clip._flanked): more than half, so that an overshoot along one covered edge (its long side, at most
+# half of it) is not one.
+BAY_SHARE = 0.5
 # Points inside each edge of a curved patch face at which its boundary is tested for leaving the solid
 # (patch.face_clip.within_solid: a sign the fuzzy split missed an overshoot).
 BOUNDARY_SAMPLES = 5

@@ -409,6 +409,30 @@ def test_clip_keeps_a_wide_band_between_covered_pieces_where_the_wall_runs_on_un
     assert area(narrow=0.0, thickness=2.0, to_mid=0.0, wall_max=3.0) == pytest.approx(96.0 * 60.0)
 
 
+def test_clip_keeps_a_bay_in_the_footprint_where_the_wall_runs_on_under_it(client):
+    # rib_side_boss.step: a boss merges into the rib's left skin (x = 49), which stops around it: a bay 5.43
+    # wide and 12 high cut into that skin from the plate, 3.74 wide as 2 x area / perimeter. The rib's right
+    # skin (x = 51, 60 x 15) offset to mid-wall and clipped to the left skin's footprint: the bay is one piece
+    # touching one covered piece, but along most of its boundary (three sides), and at mid-wall (x = 50) it
+    # lies in the rib all over: the rib runs on through the boss's root.
+    handle = load_fixture(client, "rib_side_boss.step")
+    g = graph(client, handle)
+    right = face_with(g, "plane", lambda f: f["normal"][0] > 0.99 and 50.0 < f["centroid"][0] < 52.0)
+    left = face_with(g, "plane", lambda f: f["normal"][0] < -0.99 and f["centroid"][0] > 48.0)
+    assert left["area"] < right["area"] == pytest.approx(60.0 * 15.0)
+
+    def area(**wall):
+        clip = {"partners": [[left["id"]]], "fuzzy": 1e-6, "narrow": 3.0, "narrow_end": 3.0, **wall}
+        ok = client.ok("make_patch", handle=handle, faces=[right["id"]], offset=-1.0, clip=clip)
+        return sum(f["area"] for f in ok["faces"])
+
+    assert area(thickness=2.0, to_mid=0.0, wall_max=3.0) == pytest.approx(60.0 * 15.0)
+    # Without the wall to probe, the bay is wider than `narrow_end` and goes.
+    assert area() == pytest.approx(left["area"])
+    # Where mid-wall lies outside the material (told it is 2 off the patch, out past the right skin), it goes.
+    assert area(thickness=2.0, to_mid=2.0, wall_max=3.0) == pytest.approx(left["area"])
+
+
 def slot_end() -> "TopoDS_Shape":
     """The end of a slot (radius 1.5 about Z, y >= 0, 10 tall) in a 2 mm half ring, which from 120 degrees on
     runs into a block (x >= -1.75): the ring's outer face (radius 3.5) spans 120..180 degrees only."""

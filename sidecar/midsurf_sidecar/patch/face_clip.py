@@ -23,8 +23,8 @@ from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 from OCP.gp import gp_Ax1, gp_Cylinder, gp_Dir, gp_Lin, gp_Pnt, gp_Trsf, gp_Vec
 
 from ..constants import (
-    BOUNDARY_SAMPLES, CONFUSION, ENCLOSED_SHARE, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AXES, SECTOR_INNER_SHARE,
-    TONGUE_REACH,
+    BAY_SHARE, BOUNDARY_SAMPLES, CONFUSION, ENCLOSED_SHARE, MIN_CLIPPED_SHARE, MIN_PERIMETER, PARALLEL_AXES,
+    SECTOR_INNER_SHARE, TONGUE_REACH,
 )
 from ..geom.booleans import split, unify
 from ..geom.face_normals import OutwardNormals
@@ -96,8 +96,9 @@ def clip_to_partners(
     points = [_point(piece) for piece in faces]
     elsewhere = [any(_inside(c, p, fuzzy) for c in others) for p in points]
     covered = [not e and any(_inside(c, p, fuzzy) for c in classifiers) for p, e in zip(points, elsewhere)]
-    # Which pieces an uncovered one touches: a band between two covered ones is never a tongue.
-    neighbours = _neighbours(splitter.Shape(), pieces) if not all(covered) else None
+    # How an uncovered piece touches the covered ones: a band between two of them, or a bay cut into one, is
+    # never a tongue.
+    flanked = _flanked(splitter.Shape(), pieces, covered) if not all(covered) else None
     cover = compound_of([f for f, c in zip(faces, covered) if c])
     areas = [surface_props(piece).Mass() for piece in faces]
     kept = []
@@ -105,7 +106,7 @@ def clip_to_partners(
         if covered[i]:
             kept.append(i)
             continue
-        between = neighbours is not None and sum(1 for j in neighbours[i] if covered[j]) >= 2
+        between = flanked is not None and flanked[i]
         if elsewhere[i]:
             continue
         if _width(piece, areas[i]) > (narrow if between else narrow_end):
@@ -167,9 +168,8 @@ def within_solid(
 def _enclosed(piece: TopoDS_Face, cut: float) -> bool:
     """Whether the piece's boundary is all cut (`cut`: the length of it shared with pieces across the solid's
     boundary), so that it touches none of the face's own edges."""
-    perimeter = GProp_GProps()
-    BRepGProp.LinearProperties_s(piece, perimeter)
-    return perimeter.Mass() - cut <= ENCLOSED_SHARE * perimeter.Mass()
+    perimeter = _perimeter(piece)
+    return perimeter - cut <= ENCLOSED_SHARE * perimeter
 
 
 def _split_by_solid(face: TopoDS_Face, solid: SolidBoundary, fuzzy: float, skins):
@@ -224,10 +224,9 @@ def _cut_lengths(shape: TopoDS_Shape, pieces, inside: list[bool]) -> list[float]
     for edge, owners in _edge_owners(shape, pieces):
         if len({inside[i] for i in owners}) < 2:
             continue
-        length = GProp_GProps()
-        BRepGProp.LinearProperties_s(edge, length)
+        length = _perimeter(edge)
         for i in owners:
-            out[i] += length.Mass()
+            out[i] += length
     return out
 
 
@@ -254,20 +253,36 @@ def _point(piece: TopoDS_Face):
     return interior_point(OutwardNormals(piece), diagonal(piece))[0]
 
 
-def _neighbours(shape: TopoDS_Shape, pieces) -> list[set[int]]:
-    """Per piece (0-based, `pieces` order), the other pieces sharing an edge with it."""
-    out: list[set[int]] = [set() for _ in range(pieces.Size())]
-    for _, owners in _edge_owners(shape, pieces):
+def _flanked(shape: TopoDS_Shape, pieces, covered: list[bool]) -> list[bool]:
+    """Per piece (0-based, `pieces` order), whether covered pieces flank it: it shares edges with two of them
+    (a band across the footprint), or its edges run along covered ones for at least BAY_SHARE of its boundary
+    (a bay cut into the footprint from its edge: where a boss or a rib merges into one skin of the wall, that
+    skin stops around the merge and the other runs on)."""
+    neighbours: list[set[int]] = [set() for _ in range(pieces.Size())]
+    along = [0.0] * pieces.Size()
+    for edge, owners in _edge_owners(shape, pieces):
+        near_covered = any(covered[j] for j in owners)
+        length = _perimeter(edge) if near_covered else 0.0
         for i in owners:
-            out[i].update(j for j in owners if j != i)
-    return out
+            neighbours[i].update(j for j in owners if j != i and covered[j])
+            if not covered[i]:
+                along[i] += length
+    return [
+        len(neighbours[i]) >= 2 or along[i] >= BAY_SHARE * _perimeter(pieces.FindKey(i + 1))
+        for i in range(pieces.Size())
+    ]
+
+
+def _perimeter(shape: TopoDS_Shape) -> float:
+    """The length of the shape's edges (of an edge: its length)."""
+    props = GProp_GProps()
+    BRepGProp.LinearProperties_s(shape, props)
+    return props.Mass()
 
 
 def _width(face: TopoDS_Face, area: float) -> float:
     """Mean width of a face of `area`, 2 x area / perimeter: the width of a long band, the radius of a disc."""
-    perimeter = GProp_GProps()
-    BRepGProp.LinearProperties_s(face, perimeter)
-    return 2.0 * area / max(perimeter.Mass(), MIN_PERIMETER)
+    return 2.0 * area / max(_perimeter(face), MIN_PERIMETER)
 
 
 def is_plane(face: TopoDS_Face) -> bool:
