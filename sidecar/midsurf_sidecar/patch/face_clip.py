@@ -173,19 +173,23 @@ def _enclosed(piece: TopoDS_Face, cut: float) -> bool:
 
 
 def _split_by_solid(face: TopoDS_Face, solid: SolidBoundary, fuzzy: float, skins):
-    """(the split shape, its faces) of the face split by the solid's boundary, None when it is not cut. OCCT's
-    fuzzy split can miss a section running at a shallow angle to the face's own rim (a tube's wall cut by an
-    oblique plane): when the face's boundary runs out of the solid and the fuzzy split gives one
-    piece, a curved face splits again without fuzz (a plane meets the faces that cut it along straight lines
-    or conics, which the fuzzy split finds; testing its boundary costs seconds on a large plate). Only the
-    solid's faces near the face cut it (a split by the whole solid costs as much as all its faces), and `skins`
-    only when they touch it."""
+    """(the split shape, its faces) of the face split by the solid's boundary, None when it is not cut. A curved
+    face whose boundary stays in the solid is not split at all: a piece of it outside the solid would touch none
+    of its edges, and such a piece (a filled hole) stays (within_solid), so the split could only give the face
+    back, at the cost of intersecting it with the solid's nearby faces (most of the patch stage on parts with
+    many bends or pipes). OCCT's fuzzy split can miss a section running at a shallow angle to the face's own
+    rim (a tube's wall cut by an oblique plane): when it gives one piece, a curved face splits again without
+    fuzz. A plane meets the faces that cut it along straight lines or conics, which the fuzzy split finds, and
+    is split as it is (testing its boundary costs seconds on a large plate). Only the solid's faces near the
+    face cut it (a split by the whole solid costs as much as all its faces), and `skins` only when they touch
+    it."""
+    curved = not is_plane(face)
+    if curved and not _boundary_leaves(face, solid.classifier, fuzzy):
+        return None
     near = solid.faces_near(face, fuzzy, skins)
     if near is None:
         return None
-    for tolerance in (fuzzy,) if is_plane(face) else (fuzzy, 0.0):
-        if tolerance == 0.0 and not _boundary_leaves(face, solid.classifier, fuzzy):
-            return None
+    for tolerance in (fuzzy, 0.0) if curved else (fuzzy,):
         splitter = split(face, [near], tolerance)
         if splitter is not None:
             pieces = indexed_map(splitter.Shape(), TopAbs_FACE)
