@@ -258,10 +258,10 @@ def _point(piece: TopoDS_Face):
 
 
 def _flanked(shape: TopoDS_Shape, pieces, covered: list[bool]) -> list[bool]:
-    """Per piece (0-based, `pieces` order), whether covered pieces flank it: it shares edges with two of them
-    (a band across the footprint), or its edges run along covered ones for at least BAY_SHARE of its boundary
-    (a bay cut into the footprint from its edge: where a boss or a rib merges into one skin of the wall, that
-    skin stops around the merge and the other runs on)."""
+    """Per piece (0-based, `pieces` order), whether it is uncovered and covered pieces flank it: it shares edges
+    with two of them (a band across the footprint), or its edges run along covered ones for at least BAY_SHARE
+    of its boundary (a bay cut into the footprint from its edge: where a boss or a rib merges into one skin of
+    the wall, that skin stops around the merge and the other runs on)."""
     neighbours: list[set[int]] = [set() for _ in range(pieces.Size())]
     along = [0.0] * pieces.Size()
     for edge, owners in _edge_owners(shape, pieces):
@@ -272,7 +272,7 @@ def _flanked(shape: TopoDS_Shape, pieces, covered: list[bool]) -> list[bool]:
             if not covered[i]:
                 along[i] += length
     return [
-        len(neighbours[i]) >= 2 or along[i] >= BAY_SHARE * _perimeter(pieces.FindKey(i + 1))
+        not covered[i] and (len(neighbours[i]) >= 2 or along[i] >= BAY_SHARE * _perimeter(pieces.FindKey(i + 1)))
         for i in range(pieces.Size())
     ]
 
