@@ -14,7 +14,7 @@ from OCP.TopoDS import TopoDS
 from midsurf_sidecar.fuse.patch_fuse import _chain_through
 from midsurf_sidecar.geom.booleans import general_fuse
 from midsurf_sidecar.geom.topology import indexed_map, subshapes
-from patch_shapes import horizontal, put_patches, rectangle, vertical
+from patch_shapes import compound, horizontal, put_patches, rectangle, vertical
 from shapes import bent_sheet
 
 FIXTURES = Path(__file__).resolve().parents[2] / "fixtures"
@@ -182,6 +182,8 @@ def test_open_box_mid_walls_share_every_crossing(client):
         ({"patches": [], "fuzzy": "tight"}, "`fuzzy`"),
         ({"patches": [], "fuzzy": 1e-4, "bodies": [0]}, "`bodies`"),
         ({"patches": [], "fuzzy": 1e-4, "bodies": "all"}, "`bodies`"),
+        ({"patches": [], "fuzzy": 1e-4, "fallbacks": [None]}, "`fallbacks`"),
+        ({"patches": [], "fuzzy": 1e-4, "fallbacks": {}}, "`fallbacks`"),
     ],
 )
 def test_bad_arguments(client, args, needle):
@@ -194,6 +196,42 @@ def test_repeated_patch_is_bad_args(client):
     (patch,) = put_patches(client, horizontal())
     err = client.err("fuse", patches=[patch, patch], fuzzy=1e-4)
     assert err["code"] == "bad_args" and str(patch) in err["message"]
+
+
+def bow_tie(z: float):
+    """A face at height z over x, y in [0, 60] x [0, 40] whose wire crosses itself: a face OCCT cannot split
+    without losing its area (as a strip grown across a fillet's edge can come out)."""
+    return rectangle((0, 0, z), (60, 40, z), (60, 0, z), (0, 40, z))
+
+
+def test_a_patch_failing_the_fuse_is_fused_as_its_fallback(client):
+    # A T of a wall (patch 1) on a plate (patch 0), the wall carrying a broken face across it, and a second wall
+    # (patch 2): the fuse fails on the broken face; only the patch whose faces fail it locally (1) is fused as
+    # its fallback (the wall alone), and the reply says so.
+    # Plates far off (patches 3..6) make the part larger than the neighbourhood of the broken face, as it is in
+    # a real part: a probe of more than half the faces is no cheaper than the whole fuse, and is not made.
+    wall, broken = vertical(30.0, z0=1.0), bow_tie(20.0)
+    plate, grown, other, alone = put_patches(client, horizontal(), compound(wall, broken), vertical(45.0, z0=1.0), wall)
+    far = put_patches(client, *(rectangle((0, 0, z), (6, 0, z), (6, 4, z), (0, 4, z)) for z in (100, 110, 120, 130)))
+    err = client.err("fuse", patches=[plate, grown, other, *far], fuzzy=1e-6)
+    assert err["code"] == "kernel_error" and "lost" in err["message"]
+    fallbacks = [None, alone, None] + [None] * len(far)
+    fused = client.ok("fuse", patches=[plate, grown, other, *far], fuzzy=1e-6, fallbacks=fallbacks)
+    check_consistent(fused)
+    assert fused["fell_back"] == [1]
+    pieces = sorted((f["patch"], round(f["area"], 6)) for f in fused["faces"] if f["patch"] < 3)
+    assert pieces == [(0, 600), (0, 600), (0, 1200), (1, 1560), (2, 1560)]
+    # Without the far plates the probe would fuse most of the part: no culprit is sought, the fuse fails.
+    err = client.err("fuse", patches=[plate, grown, other], fuzzy=1e-6, fallbacks=[None, alone, None])
+    assert err["code"] == "kernel_error"
+    # A fuse that succeeds uses no fallback.
+    assert client.ok("fuse", patches=[plate, other], fuzzy=1e-6, fallbacks=[None, alone])["fell_back"] == []
+
+
+def test_a_fuse_its_fallbacks_do_not_mend_fails(client):
+    plate, grown, alone = put_patches(client, horizontal(), compound(vertical(30.0, z0=1.0), bow_tie(20.0)), horizontal())
+    err = client.err("fuse", patches=[plate, grown], fuzzy=1e-6, fallbacks=[alone, None])
+    assert err["code"] == "kernel_error"
 
 
 def c_shaped_boss(z0: float):

@@ -152,55 +152,71 @@ pub fn stitch<K: Kernel>(
         &mut tally,
         &mut failed_passes,
     )?;
-    let (mut fused, mut keep, mut branches) = grown.expect("the joints pass fuses");
+    let (fused, keep, mut branches) = grown.expect("the joints pass fuses");
+    let mut keep = keep;
     peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
     // The free edges of the result, probed once for both the rims pass and the final count.
-    let (mut free, mut probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
-    let (mut counted, mut open_patches) = classify_free(&fused, &free, &probes, patches, solids);
-    if counted.open_edges > 0 {
-        if let Some((again, again_keep, more)) = run_pass(
-            kernel,
-            &fused,
-            &keep,
-            &free,
-            &probes,
-            patches,
-            solids,
-            fuzzy,
-            Pass::Rims,
-            &mut tally,
-            &mut failed_passes,
-        )? {
-            (fused, keep) = (again, again_keep);
-            branches.extend(more);
-            peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
-            (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
-            (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
-        }
-    }
-    if counted.open_edges > 0 {
-        let (open_free, open_probes) = free_and_probed(kernel, &fused, &keep, patches, true)?;
-        if let Some((again, again_keep, more)) = run_pass(
-            kernel,
-            &fused,
-            &keep,
-            &open_free,
-            &open_probes,
-            patches,
-            solids,
-            fuzzy,
-            Pass::Partners,
-            &mut tally,
-            &mut failed_passes,
-        )? {
-            (fused, keep) = (again, again_keep);
-            branches.extend(more);
-            peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
-            (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
-            (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
-        }
-    }
+    let (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
+    let (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
+    let mut state = State { fused, keep, branches, free, probes, counted, open_patches };
+    let context = (patches, solids, fuzzy);
+    state = later_pass(kernel, state, Pass::Rims, context, &mut tally, &mut failed_passes)?;
+    state = later_pass(kernel, state, Pass::Partners, context, &mut tally, &mut failed_passes)?;
+    let State { fused, keep, branches, counted, open_patches, .. } = state;
     Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches, failed_passes })
+}
+
+/// The stitching between passes: the fused patches, the pieces kept, the branches dropped so far, the free edges
+/// with their probes and their count, and the patches with an open edge.
+struct State {
+    fused: Fused,
+    keep: Vec<bool>,
+    branches: Vec<Branch>,
+    free: Vec<(usize, usize)>,
+    probes: Vec<EdgeProbe>,
+    counted: FreeEdges,
+    open_patches: BTreeSet<usize>,
+}
+
+/// A pass after the first (`Pass::Rims` on the free edges as they are, `Pass::Partners` on them probed for
+/// partners), when edges are still open; its result peeled and counted. The result stands only when it leaves
+/// no more open length than it found: a later pass is there to close what the first left, and one that opens
+/// more (a strip's overshoot peeled with the piece it hung on, a fuse that split a patch apart) is undone with
+/// its joints, so each pass can only improve the stitching.
+fn later_pass<K: Kernel>(
+    kernel: &mut K,
+    state: State,
+    pass: Pass,
+    (patches, solids, fuzzy): (&[PatchInfo], &[SolidMesh], f64),
+    tally: &mut JointTally,
+    failed_passes: &mut Vec<String>,
+) -> Result<State, SidecarError> {
+    if state.counted.open_edges == 0 {
+        return Ok(state);
+    }
+    let before = tally.clone();
+    let probed;
+    let (free, probes) = if pass == Pass::Partners {
+        probed = free_and_probed(kernel, &state.fused, &state.keep, patches, true)?;
+        (&probed.0, &probed.1)
+    } else {
+        (&state.free, &state.probes)
+    };
+    let grown =
+        run_pass(kernel, &state.fused, &state.keep, free, probes, patches, solids, fuzzy, pass, tally, failed_passes)?;
+    let Some((fused, mut keep, more)) = grown else {
+        return Ok(state);
+    };
+    let mut branches = state.branches.clone();
+    branches.extend(more);
+    peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
+    let (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
+    let (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
+    if counted.open_length > state.counted.open_length {
+        *tally = before;
+        return Ok(state);
+    }
+    Ok(State { fused, keep, branches, free, probes, counted, open_patches })
 }
 
 /// One pass of stitching, growing curved edges to the rim too; when the kernel fails it (a fuse that gives up),
