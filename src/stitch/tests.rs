@@ -304,16 +304,11 @@ fn a_failed_pass_growing_no_curved_edge_is_not_made_again() {
     assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "gather", "fuse"]);
 }
 
-#[test]
-fn a_later_pass_the_kernel_fails_leaves_the_earlier_stitching_and_says_so() {
-    // The straight edge of the plate above, 0.7 short of the rim: the joints pass grows it, but its fused result
-    // still has the edge where it was (as a kernel that merged the strip away would leave it). The rims pass
-    // grows it again and its fuse fails: the joints pass's stitching stands, the failure is named, and the
-    // partners pass finds no partner for the edge.
-    let (a, b) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
-    let fused = fused(vec![face(0, DVec3::Z)], vec![edge(a, b, &[0])]);
-    let edge_probe = json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[])]});
-    let replies = vec![
+/// The replies for a plate whose straight edge a-b (probed as `edge_probe`) the joints pass grows but leaves
+/// where it was, up to the rims pass's fuse: the probe, the strip, the patch's fallback and gather, the fuse
+/// (handle 40, the edge still free), the probe of its free edges, then the rims pass's strip and gathers.
+fn joints_then_rims_replies(a: DVec3, b: DVec3, edge_probe: &Value) -> Vec<Value> {
+    vec![
         edge_probe.clone(),
         json!({"handle": 20, "strips": [{"area": 7.0, "error": null}], "corners": []}),
         json!({"handle": 29, "faces": 1}),
@@ -323,9 +318,20 @@ fn a_later_pass_the_kernel_fails_leaves_the_earlier_stitching_and_says_so() {
         json!({"handle": 21, "strips": [{"area": 7.0, "error": null}], "corners": []}),
         json!({"handle": 28, "faces": 1}),
         json!({"handle": 31, "faces": 1}),
-        json!({"error": {"code": "kernel_failed", "message": "the fuse gave up"}}),
-        edge_probe,
-    ];
+    ]
+}
+
+#[test]
+fn a_later_pass_the_kernel_fails_leaves_the_earlier_stitching_and_says_so() {
+    // The straight edge of the plate above, 0.7 short of the rim: the joints pass grows it, but its fused result
+    // still has the edge where it was (as a kernel that merged the strip away would leave it). The rims pass
+    // grows it again and its fuse fails: the joints pass's stitching stands, the failure is named, and the
+    // partners pass finds no partner for the edge.
+    let (a, b) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
+    let fused = fused(vec![face(0, DVec3::Z)], vec![edge(a, b, &[0])]);
+    let edge_probe = json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[])]});
+    let mut replies = joints_then_rims_replies(a, b, &edge_probe);
+    replies.extend([json!({"error": {"code": "kernel_failed", "message": "the fuse gave up"}}), edge_probe]);
     let (stitched, kernel) = run(&fused, &[info(2.0, (1, 0))], (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies);
 
     assert_eq!(
@@ -381,20 +387,12 @@ fn a_later_pass_that_leaves_more_open_than_it_found_is_undone() {
     let fused = fused(vec![face(0, DVec3::Z)], vec![edge(a, b, &[0])]);
     let edge_probe = json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[])]});
     let both_probes = json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[]), probe(c, d, DVec3::Z, DVec3::X, &[])]});
-    let replies = vec![
-        edge_probe.clone(),
-        json!({"handle": 20, "strips": [{"area": 7.0, "error": null}], "corners": []}),
-        json!({"handle": 29, "faces": 1}),
-        json!({"handle": 30, "faces": 1}),
-        json!({"handle": 40, "faces": [face(0, DVec3::Z)], "edges": [edge(a, b, &[0])]}),
-        edge_probe.clone(),
-        json!({"handle": 21, "strips": [{"area": 7.0, "error": null}], "corners": []}),
-        json!({"handle": 28, "faces": 1}),
-        json!({"handle": 31, "faces": 1}),
+    let mut replies = joints_then_rims_replies(a, b, &edge_probe);
+    replies.extend([
         json!({"handle": 41, "faces": [face(0, DVec3::Z)], "edges": [edge(a, b, &[0]), edge(c, d, &[0])]}),
         both_probes,
         edge_probe,
-    ];
+    ]);
     let (stitched, _) = run(&fused, &[info(2.0, (1, 0))], (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies);
 
     assert_eq!(stitched.fused.handle, 40, "the joints pass's result stands");

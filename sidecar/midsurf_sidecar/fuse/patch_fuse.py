@@ -139,12 +139,9 @@ def _culprits(patches: list[TopoDS_Shape], fallbacks: list[TopoDS_Shape | None],
     faces are more than half of all is not probed, and the search gives up (no culprits) once the probes have
     fused CULPRIT_BUDGET times as many faces as the whole fuse (a curved cover whose large faces reach every
     other would otherwise fuse the whole part once per patch)."""
-    total = sum(len(subshapes(patch, TopAbs_FACE)) for patch in patches)
+    boxes = [[(face, _box(face, fuzzy)) for face in subshapes(patch, TopAbs_FACE)] for patch in patches]
+    total = sum(len(own) for own in boxes)
     budget = CULPRIT_BUDGET * total
-    boxes = []
-    for patch in patches:
-        faces = subshapes(patch, TopAbs_FACE)
-        boxes.append([(face, _box(face, fuzzy)) for face in faces])
     culprits = []
     for k, own in enumerate(boxes):
         if fallbacks[k] is None or not own:
