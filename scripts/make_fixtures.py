@@ -620,6 +620,20 @@ def tube_oblique_end() -> Fixture:
     return Fixture(part, math.pi * (20**2 - 18**2) * 40, 4)
 
 
+def tube_stepped_bore() -> Fixture:
+    """A tube (outer R 18.5) standing on z = 0, 12 high, its bore R 16 up to z = 6 and R 14.5 above (a
+    counterbore, a stepped sleeve): the class of a curved wall stepping between thicknesses all round, 2.5 below
+    and 4 above. Each mid-cylinder (R 17.25 below, R 16.5 above) ends at the step in a whole circle; they meet
+    through a conical ramp round the whole bore, so the mid-surface is one piece.
+    Faces: 6 (the outer cylinder, two bores, the bottom, the step and the top annuli).
+    Volume: pi * (18.5^2 - 16^2) * 6 + pi * (18.5^2 - 14.5^2) * 6.
+    """
+    bore = cylinder_z(0, 0, -1, 16, 7) + cylinder_z(0, 0, 5, 14.5, 8)
+    part = cylinder_z(0, 0, 0, 18.5, 12) - bore
+    volume = math.pi * (18.5**2 - 16**2) * 6 + math.pi * (18.5**2 - 14.5**2) * 6
+    return Fixture(single_solid(part.clean()), volume, 6)
+
+
 # Where some CAD exports place a cylinder's axis point (out along the axis) in a part of a few centimetres.
 FAR_ORIGIN = 5e5
 
@@ -907,6 +921,7 @@ PARTS: list[Callable[[], Fixture]] = [
     bspline_shell_rib,
     bspline_shell_tapered,
     tube_oblique_end,
+    tube_stepped_bore,
     tube_oblique_end_far_origins,
     channel_low_end,
     channel_thick_flanges,

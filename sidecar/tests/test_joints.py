@@ -241,6 +241,24 @@ def test_a_step_bridge_between_coaxial_arcs_is_a_band_of_a_cone_sharing_its_arcs
     assert radii == [10.39, 10.76]
 
 
+def test_a_step_bridge_whose_arcs_start_where_they_end_is_a_whole_turn_of_a_cone():
+    """A stepped bore's ramp: from the thin wall's mid-circle (R 17.25, z = 6) to one RAMP_RUN inside the
+    thick wall's (R 16.5, z = 7.25), all round. Each side of the quad starts where it ends; the band is the
+    whole turn of the cone between the circles, valid, of area pi (R1 + R2) x slant."""
+    import math
+
+    from OCP.BRepCheck import BRepCheck_Analyzer
+
+    from midsurf_sidecar.geom.topology import surface_props
+    from midsurf_sidecar.joints.edge_strip import corner
+
+    quad = [(17.25, 0.0, 6.0), (16.5, 0.0, 7.25), (16.5, 0.0, 7.25), (17.25, 0.0, 6.0)]
+    band = corner(quad, (0.0, 0.0, 1.0), ((0.0, 0.0, 0.0), (0.0, 0.0, 1.0)))
+    assert BRepCheck_Analyzer(band).IsValid()
+    slant = math.hypot(17.25 - 16.5, 1.25)
+    assert surface_props(band).Mass() == pytest.approx(math.pi * (17.25 + 16.5) * slant, rel=1e-6)
+
+
 def test_a_band_between_two_arcs_of_one_cylinder_is_a_face_of_that_cylinder():
     """A gap in a tube's own mid-surface (a rib crossing a boss off its axis) is bridged between the two arcs
     at the ends of the stretch the gap's rulings share: both of radius 3.75, at z = 3 and z = 31.6, from angle

@@ -90,6 +90,18 @@ impl Course {
     }
 }
 
+/// The stretch (from, to) of `course` between the ends `p` and `q` of a bridge along it. Ends that meet on an arc
+/// are a whole turn (`arc_bridge` makes no sliver), the arc's whole length.
+fn stretch_along(course: Course, p: DVec3, q: DVec3) -> (f64, f64) {
+    if let Course::Arc { radius, sweep, .. } = course {
+        if p.distance(q) <= 0.5 * ARC_SHARE * radius {
+            return (0.0, sweep * radius);
+        }
+    }
+    let (s, t) = (course.position(p), course.position(q));
+    (s.min(t), s.max(t))
+}
+
 /// The angle of `v` about unit `axis` from unit `from` (square to it), counter-clockwise, in -pi/2..3 pi/2: a
 /// point a little before an arc's start reads as a small negative angle, not as nearly a whole turn.
 fn angle_about(v: DVec3, axis: DVec3, from: DVec3) -> f64 {
@@ -114,7 +126,12 @@ fn course(points: &[DVec3]) -> Option<Course> {
     if straight {
         return (length > 0.0).then_some(Course::Line { start: a, direction: u, length });
     }
-    let m = points[points.len() / 2];
+    // A closed edge (a whole circle: a tube's end, a stepped bore) starts where it ends: its circle goes
+    // through the start and the points a third and two thirds along, and it sweeps a whole turn.
+    let spread = points.iter().map(|p| p.distance(a)).fold(0.0, f64::max);
+    let closed = length <= ARC_SHARE * spread;
+    let (m, b) =
+        if closed { (points[points.len() / 3], points[2 * points.len() / 3]) } else { (points[points.len() / 2], b) };
     let (v, w) = (m - a, b - a);
     let normal = v.cross(w);
     if normal.length_squared() == 0.0 {
@@ -133,7 +150,11 @@ fn course(points: &[DVec3]) -> Option<Course> {
         return None;
     }
     let from = (a - center) / radius;
-    let sweep = angle_about(b - center, axis, from).rem_euclid(std::f64::consts::TAU);
+    let sweep = if closed {
+        std::f64::consts::TAU
+    } else {
+        angle_about(b - center, axis, from).rem_euclid(std::f64::consts::TAU)
+    };
     Some(Course::Arc { center, axis, radius, from, sweep })
 }
 
@@ -182,11 +203,8 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     let mut used: Vec<Vec<(f64, f64)>> = vec![Vec::new(); edges.len()];
     let mut out = Vec::new();
     for (_, bridge) in candidates {
-        let stretch = |k: usize, p: DVec3, q: DVec3| {
-            let c = courses[k].expect("bridged edges are lines or arcs");
-            let (s, t) = (c.position(p), c.position(q));
-            (s.min(t), s.max(t))
-        };
+        let stretch =
+            |k: usize, p: DVec3, q: DVec3| stretch_along(courses[k].expect("bridged edges are lines or arcs"), p, q);
         let owner = stretch(bridge.owner, bridge.quad[0], bridge.quad[3]);
         let other = stretch(bridge.other, bridge.quad[1], bridge.quad[2]);
         let free = |k: usize, (s, t): (f64, f64)| {
@@ -258,16 +276,21 @@ fn arc_bridge(
     {
         return None;
     }
-    // The thick arc's ends as angles about the thin one's axis, from its start.
-    let (first_b, last_b) = (*ek.points.first()?, *ek.points.last()?);
-    let (b0, b1) = (angle_about(first_b - ca, axis, from), angle_about(last_b - ca, axis, from));
-    let (lo, hi) = (b0.min(b1), b0.max(b1));
+    // The thick arc's ends as angles about the thin one's axis, from its start; a whole circle spans it all.
+    let (lo, hi) = if sb >= std::f64::consts::TAU {
+        (0.0, sa)
+    } else {
+        let (first_b, last_b) = (*ek.points.first()?, *ek.points.last()?);
+        let (b0, b1) = (angle_about(first_b - ca, axis, from), angle_about(last_b - ca, axis, from));
+        (b0.min(b1), b0.max(b1))
+    };
     // An arc read across the thin one's start the long way round is no neighbour of it.
     if hi - lo > sb + ARC_SHARE {
         return None;
     }
     let (s0, s1) = (lo.max(0.0), hi.min(sa));
-    if (s1 - s0) <= SHARED_STRETCH_SHARE * sa {
+    // No sliver of an arc: a bridge whose ends meet is a whole turn (`stretch_along`).
+    if (s1 - s0) <= SHARED_STRETCH_SHARE * sa || s1 - s0 <= ARC_SHARE {
         return None;
     }
     // Directions at angle s: radial, and the thin and thick edges' normals and outward ones turned there from

@@ -137,6 +137,28 @@ fn a_rim_band_over_a_rounded_corner_meets_the_wall_below_through_a_conical_ramp(
     assert!(step_bridges(&moved).is_empty());
 }
 
+#[test]
+fn a_tube_stepping_between_thicknesses_all_round_meets_through_a_whole_turn_of_a_ramp() {
+    // A stepped bore (axis z): the 2.5 mm wall's mid-cylinder (r 17.25) up to z = 6, the 4 mm wall's (r 16.5)
+    // from there up; each patch's edge at the step is a whole circle, starting where it ends.
+    use std::f64::consts::TAU;
+    let edges = [arc(0, 4.0, 16.5, 6.0, (TAU, 0.0), -DVec3::Z), arc(1, 2.5, 17.25, 6.0, (0.0, TAU), DVec3::Z)];
+    let bridges = step_bridges(&edges);
+    assert_eq!(bridges.len(), 1, "{bridges:?}");
+    let StepBridge { owner, other, quad, axis, .. } = &bridges[0];
+    assert_eq!((*owner, *other), (1, 0), "the thinner patch owns the ramp");
+    assert!(axis.is_some(), "a band between circles has their axis");
+    // A whole turn: each side of the quad starts where it ends, from the thin circle to one RAMP_RUN x 2.5
+    // inside the thick patch.
+    let radius = |p: DVec3| p.truncate().length();
+    assert!(quad[0].distance(quad[3]) < 1e-9 && quad[1].distance(quad[2]) < 1e-9, "{quad:?}");
+    assert!((radius(quad[0]) - 17.25).abs() < 1e-9 && (quad[0].z - 6.0).abs() < 1e-9, "{quad:?}");
+    assert!((radius(quad[1]) - 16.5).abs() < 1e-9 && (quad[1].z - 7.25).abs() < 1e-9, "{quad:?}");
+    // The whole circle is taken: a third level round the same bore finds no stretch left.
+    let crowded = [edges[0].clone(), edges[1].clone(), arc(2, 2.6, 17.3, 6.0, (0.0, TAU), DVec3::Z)];
+    assert_eq!(step_bridges(&crowded).len(), 1);
+}
+
 /// A ruling of a cylinder of radius `r` about the z axis at angle `a` (radians), from z0 to z1, of patch `patch`
 /// (t = 3), its outward direction the tangent turning `sense` (+1 counter-clockwise) about the axis.
 fn ruling(patch: usize, r: f64, a: f64, (z0, z1): (f64, f64), sense: f64) -> LooseEdge {
