@@ -1,6 +1,8 @@
 //! Bridges between free edges that found no partner (Sheen et al. 5.4, in-plane joints): two levels of a wall
 //! at a thickness step, laid down into a ramp when steep, and in-plane gaps bridged flat.
 
+use std::f64::consts::{FRAC_PI_2, TAU};
+
 use glam::DVec3;
 
 /// A free edge, as the step search sees it.
@@ -90,11 +92,11 @@ impl Course {
     }
 }
 
-/// The stretch (from, to) of `course` between the ends `p` and `q` of a bridge along it. Ends that meet on an arc
-/// are a whole turn (`arc_bridge` makes no sliver), the arc's whole length.
+/// The stretch (from, to) of `course` between the ends `p` and `q` of a bridge along it. Ends that meet on a whole
+/// circle are a whole turn (`arc_bridge` makes no sliver), the circle's whole length.
 fn stretch_along(course: Course, p: DVec3, q: DVec3) -> (f64, f64) {
     if let Course::Arc { radius, sweep, .. } = course {
-        if p.distance(q) <= 0.5 * ARC_SHARE * radius {
+        if sweep >= TAU && p.distance(q) <= 0.5 * ARC_SHARE * radius {
             return (0.0, sweep * radius);
         }
     }
@@ -106,8 +108,8 @@ fn stretch_along(course: Course, p: DVec3, q: DVec3) -> (f64, f64) {
 /// point a little before an arc's start reads as a small negative angle, not as nearly a whole turn.
 fn angle_about(v: DVec3, axis: DVec3, from: DVec3) -> f64 {
     let angle = v.dot(axis.cross(from)).atan2(v.dot(from));
-    if angle < -std::f64::consts::FRAC_PI_2 {
-        angle + std::f64::consts::TAU
+    if angle < -FRAC_PI_2 {
+        angle + TAU
     } else {
         angle
     }
@@ -150,11 +152,7 @@ fn course(points: &[DVec3]) -> Option<Course> {
         return None;
     }
     let from = (a - center) / radius;
-    let sweep = if closed {
-        std::f64::consts::TAU
-    } else {
-        angle_about(b - center, axis, from).rem_euclid(std::f64::consts::TAU)
-    };
+    let sweep = if closed { TAU } else { angle_about(b - center, axis, from).rem_euclid(TAU) };
     Some(Course::Arc { center, axis, radius, from, sweep })
 }
 
@@ -277,7 +275,7 @@ fn arc_bridge(
         return None;
     }
     // The thick arc's ends as angles about the thin one's axis, from its start; a whole circle spans it all.
-    let (lo, hi) = if sb >= std::f64::consts::TAU {
+    let (lo, hi) = if sb >= TAU {
         (0.0, sa)
     } else {
         let (first_b, last_b) = (*ek.points.first()?, *ek.points.last()?);
@@ -426,7 +424,7 @@ pub fn band_middle(quad: &[DVec3; 4], origin: DVec3, direction: DVec3) -> DVec3 
     let height = |p: DVec3| (p - origin).dot(direction);
     let (from, to) =
         ((quad[0] - origin).reject_from_normalized(direction), (quad[3] - origin).reject_from_normalized(direction));
-    let turn = angle_about(to, direction, from.normalize()).rem_euclid(std::f64::consts::TAU);
+    let turn = angle_about(to, direction, from.normalize()).rem_euclid(TAU);
     let middle = glam::DQuat::from_axis_angle(direction, 0.5 * turn) * from;
     origin + direction * (0.5 * (height(quad[0]) + height(quad[1]))) + middle
 }
