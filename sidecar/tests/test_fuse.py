@@ -228,6 +228,27 @@ def test_a_patch_failing_the_fuse_is_fused_as_its_fallback(client):
     assert client.ok("fuse", patches=[plate, other], fuzzy=1e-6, fallbacks=[None, alone])["fell_back"] == []
 
 
+def test_a_culprit_search_its_budget_cannot_finish_fuses_nothing(monkeypatch):
+    # The search gives no culprits when its probes would fuse more faces than its budget: sized from the boxes
+    # first, it makes none of them (it used to fuse probes until the budget ran out, then give up all the same).
+    from midsurf_sidecar.fuse import patch_fuse
+
+    wall, broken = vertical(30.0, z0=1.0), bow_tie(20.0)
+    far = [compound(rectangle((0, 0, z), (6, 0, z), (6, 4, z), (0, 4, z))) for z in (100, 110, 120, 130)]
+    patches = [compound(horizontal()), compound(wall, broken), compound(vertical(45.0, z0=1.0)), *far]
+    # Probes: the broken wall's (its 2 faces and the 2 it meets), and the first far plate's (itself): 5 of 8.
+    fallbacks = [None, compound(wall), None, far[0], None, None, None]
+    fused = []
+    real = patch_fuse._fuse_faces
+    monkeypatch.setattr(patch_fuse, "_fuse_faces", lambda faces, fuzzy: fused.append(len(faces)) or real(faces, fuzzy))
+    assert patch_fuse._culprits(patches, fallbacks, 1e-6) == [1]
+    assert fused == [4, 1]
+    fused.clear()
+    monkeypatch.setattr(patch_fuse, "CULPRIT_BUDGET", 0.5)
+    assert patch_fuse._culprits(patches, fallbacks, 1e-6) == []
+    assert fused == []
+
+
 def test_a_fuse_its_fallbacks_do_not_mend_fails(client):
     plate, grown, alone = put_patches(client, horizontal(), compound(vertical(30.0, z0=1.0), bow_tie(20.0)), horizontal())
     err = client.err("fuse", patches=[plate, grown], fuzzy=1e-6, fallbacks=[alone, None])

@@ -136,13 +136,13 @@ def _culprits(patches: list[TopoDS_Shape], fallbacks: list[TopoDS_Shape | None],
     """The patches (with a fallback) whose faces fail a fuse with the faces of the other patches near them (boxes
     within the fuzzy value): a failure of the whole fuse comes from where some faces meet, and a local fuse of
     those faces fails the same way, at a fraction of the cost. Not where that is no cheaper: a patch whose near
-    faces are more than half of all is not probed, and the search gives up (no culprits) once the probes have
-    fused CULPRIT_BUDGET times as many faces as the whole fuse (a curved cover whose large faces reach every
-    other would otherwise fuse the whole part once per patch)."""
+    faces are more than half of all is not probed, and there is no search (no culprits) when the probes would
+    fuse more than CULPRIT_BUDGET times as many faces as the whole fuse (a curved cover whose large faces reach
+    every other would otherwise fuse the whole part once per patch). The probes are sized first, from the boxes
+    alone: a search that would run out of budget part way gives no culprits either, after all its fuses."""
     boxes = [[(face, _box(face, fuzzy)) for face in subshapes(patch, TopAbs_FACE)] for patch in patches]
     total = sum(len(own) for own in boxes)
-    budget = CULPRIT_BUDGET * total
-    culprits = []
+    probes: list[tuple[int, list[TopoDS_Shape]]] = []
     for k, own in enumerate(boxes):
         if fallbacks[k] is None or not own:
             continue
@@ -155,13 +155,14 @@ def _culprits(patches: list[TopoDS_Shape], fallbacks: list[TopoDS_Shape | None],
             for face, box in other:
                 if any(not box.IsOut(mine) for _, mine in own):
                     near.Add(face)
-        if 2 * near.Size() > total:
-            continue
-        budget -= near.Size()
-        if budget < 0:
-            return []
+        if 2 * near.Size() <= total:
+            probes.append((k, [near.FindKey(i + 1) for i in range(near.Size())]))
+    if sum(len(faces) for _, faces in probes) > CULPRIT_BUDGET * total:
+        return []
+    culprits = []
+    for k, faces in probes:
         try:
-            _fuse_faces([near.FindKey(i + 1) for i in range(near.Size())], fuzzy)
+            _fuse_faces(faces, fuzzy)
         except KernelError:
             culprits.append(k)
     return culprits
