@@ -1,7 +1,25 @@
 """probe_edges, extend_edges and gather: a T joint made by growing the rib's free edge down to the base."""
 
-import pytest
+import math
 
+import pytest
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeVertex
+from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeCone, BRepPrimAPI_MakeCylinder
+from OCP.Bnd import Bnd_Box
+from OCP.Geom import Geom_CylindricalSurface
+from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Line
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS
+from OCP.gp import gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt
+
+from midsurf_sidecar.geom.booleans import general_fuse
+from midsurf_sidecar.geom.topology import subshapes, surface_props
+from midsurf_sidecar.joints.edge_strip import corner, strip
 from patch_shapes import horizontal, put_patches, rectangle
 from test_fuse import fuse
 
@@ -100,12 +118,6 @@ def test_strip_needs_positive_lengths(client):
 def side_and_foot(solid, kind):
     """The lateral face of a solid of revolution standing on z = 0 (the face of surface `kind`) and its foot:
     the circle edge at z = 0."""
-    from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
-    from OCP.GeomAbs import GeomAbs_Circle
-    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS
-
     faces = TopExp_Explorer(solid, TopAbs_FACE)
     while BRepAdaptor_Surface(TopoDS.Face(faces.Current())).GetType() != kind:
         faces.Next()
@@ -123,15 +135,6 @@ def side_and_foot(solid, kind):
 def test_a_tube_end_grows_along_its_own_cylinder():
     """A circle edge of a cylindrical patch grown along the axis stays on the patch's cylinder (so it merges
     into the patch), not a ruled or extruded surface."""
-    import math
-
-    from OCP.BRepAdaptor import BRepAdaptor_Surface
-    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
-    from OCP.GeomAbs import GeomAbs_Cylinder
-
-    from midsurf_sidecar.joints.edge_strip import strip
-    from midsurf_sidecar.geom.topology import surface_props
-
     side, bottom = side_and_foot(BRepPrimAPI_MakeCylinder(2.0, 5.0).Shape(), GeomAbs_Cylinder)
     grown = strip(side, bottom, [1.5] * 5)
     assert BRepAdaptor_Surface(grown).GetType() == GeomAbs_Cylinder
@@ -145,23 +148,6 @@ def test_a_saddle_edge_grown_onto_a_face_is_a_band_of_its_own_cylinder():
     sqrt(21) to 5; the seam splits it in two halves). Grown onto the main's face by lengths that vary along it,
     the strip is the band of the branch's own cylinder from the saddle down past its lowest point by the
     longest length, which meets the main's cylinder analytically; without `onto_face` it is a ruled surface."""
-    import math
-
-    from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
-    from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
-    from OCP.BRepBndLib import BRepBndLib
-    from OCP.BRepCheck import BRepCheck_Analyzer
-    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
-    from OCP.Bnd import Bnd_Box
-    from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Line
-    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS
-    from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt
-
-    from midsurf_sidecar.joints.edge_strip import strip
-    from midsurf_sidecar.geom.topology import surface_props
-
     branch = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2.0, 10.0).Shape()
     main = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-10, 0, 0), gp_Dir(1, 0, 0)), 5.0, 20.0).Shape()
     faces = TopExp_Explorer(BRepAlgoAPI_Cut(branch, main).Shape(), TopAbs_FACE)
@@ -196,15 +182,6 @@ def test_a_saddle_edge_grown_onto_a_face_is_a_band_of_its_own_cylinder():
 def test_a_cone_foot_grows_along_its_own_cone():
     """The foot circle of a conical patch (a drafted boss's mid-surface) grown down its meridian stays on the
     patch's cone, so it merges into the patch: a ruled strip would be a face of its own."""
-    import math
-
-    from OCP.BRepAdaptor import BRepAdaptor_Surface
-    from OCP.BRepPrimAPI import BRepPrimAPI_MakeCone
-    from OCP.GeomAbs import GeomAbs_Cone
-
-    from midsurf_sidecar.geom.topology import surface_props
-    from midsurf_sidecar.joints.edge_strip import strip
-
     # Radius 6 at z = 0 narrowing to 5 at z = 10.
     side, foot = side_and_foot(BRepPrimAPI_MakeCone(6.0, 5.0, 10.0).Shape(), GeomAbs_Cone)
     slant = math.hypot(1.0, 10.0)
@@ -217,17 +194,6 @@ def test_a_cone_foot_grows_along_its_own_cone():
 def test_a_step_bridge_between_coaxial_arcs_is_a_band_of_a_cone_sharing_its_arcs():
     # A rim band's mid-surface (radius 10.76 from z = 35.64 up) over a rounded corner's wall (radius 10.39 up to
     # z = 35.64): the ramp from the band's edge down to an arc 0.635 inside the wall's patch, a quarter turn.
-    import math
-
-    from OCP.BRepAdaptor import BRepAdaptor_Curve
-    from OCP.BRepCheck import BRepCheck_Analyzer
-    from OCP.GeomAbs import GeomAbs_Circle
-    from OCP.TopAbs import TopAbs_EDGE
-    from OCP.TopoDS import TopoDS
-
-    from midsurf_sidecar.geom.topology import subshapes, surface_props
-    from midsurf_sidecar.joints.edge_strip import corner
-
     def at(r, angle, z):
         return (r * math.cos(angle), r * math.sin(angle), z)
 
@@ -245,13 +211,6 @@ def test_a_step_bridge_whose_arcs_start_where_they_end_is_a_whole_turn_of_a_cone
     """A stepped bore's ramp: from the thin wall's mid-circle (R 17.25, z = 6) to one RAMP_RUN inside the
     thick wall's (R 16.5, z = 7.25), all round. Each side of the quad starts where it ends; the band is the
     whole turn of the cone between the circles, valid, of area pi (R1 + R2) x slant."""
-    import math
-
-    from OCP.BRepCheck import BRepCheck_Analyzer
-
-    from midsurf_sidecar.geom.topology import surface_props
-    from midsurf_sidecar.joints.edge_strip import corner
-
     quad = [(17.25, 0.0, 6.0), (16.5, 0.0, 7.25), (16.5, 0.0, 7.25), (17.25, 0.0, 6.0)]
     band = corner(quad, (0.0, 0.0, 1.0), ((0.0, 0.0, 0.0), (0.0, 0.0, 1.0)))
     assert BRepCheck_Analyzer(band).IsValid()
@@ -264,15 +223,6 @@ def test_a_band_between_two_arcs_of_one_cylinder_is_a_face_of_that_cylinder():
     at the ends of the stretch the gap's rulings share: both of radius 3.75, at z = 3 and z = 31.6, from angle
     0 counter-clockwise to 33 degrees. The band is a face of that cylinder (a ruled B-spline would not merge into
     the patch), of area 3.75 x 0.576 x 28.6."""
-    import math
-
-    from OCP.BRepAdaptor import BRepAdaptor_Surface
-    from OCP.BRepCheck import BRepCheck_Analyzer
-    from OCP.GeomAbs import GeomAbs_Cylinder
-
-    from midsurf_sidecar.geom.topology import surface_props
-    from midsurf_sidecar.joints.edge_strip import corner
-
     def at(angle, z):
         return (3.75 * math.cos(angle), 3.75 * math.sin(angle), z)
 
@@ -292,21 +242,6 @@ def test_an_arc_past_the_period_grows_a_strip_the_fuse_keeps_valid():
     u 0..pi. Fused with the patch, the strip must stay a valid face of positive area: on the patch's very surface
     object it took the patch's pcurve of their shared edge, a period away from its own wire, and came out
     inverted (and in a whole part's fuse, deleted the patch face with it)."""
-    import math
-
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeVertex
-    from OCP.BRepAdaptor import BRepAdaptor_Curve2d
-    from OCP.BRepCheck import BRepCheck_Analyzer
-    from OCP.Geom import Geom_CylindricalSurface
-    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS
-    from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
-
-    from midsurf_sidecar.geom.booleans import general_fuse
-    from midsurf_sidecar.geom.topology import surface_props
-    from midsurf_sidecar.joints.edge_strip import strip
-
     surface = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2.0)
     tube = BRepBuilderAPI_MakeFace(surface, 1.5 * math.pi, 3.0 * math.pi, 0.0, 5.0, 1e-7).Face()
     touched = general_fuse([tube, BRepBuilderAPI_MakeVertex(gp_Pnt(2.0, 0.0, 5.0)).Vertex()], 1e-7)

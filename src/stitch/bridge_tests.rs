@@ -112,7 +112,6 @@ fn arc(patch: usize, thickness: f64, r: f64, z: f64, (a0, a1): (f64, f64), outwa
 fn a_rim_band_over_a_rounded_corner_meets_the_wall_below_through_a_conical_ramp() {
     // A housing's rounded corner (axis z): the wall's mid-surface (t = 2) at radius 10.39 up to z = 35.64, the
     // thinner rim band's (t = 1.27) at radius 10.76 from there up: the band's patch lies 0.37 further out.
-    use std::f64::consts::FRAC_PI_2;
     let edges = [
         arc(0, 2.0, 10.39, 35.64, (0.0, FRAC_PI_2), DVec3::Z),
         arc(1, 1.27, 10.76, 35.64, (FRAC_PI_2, 0.0), -DVec3::Z),
@@ -141,7 +140,6 @@ fn a_rim_band_over_a_rounded_corner_meets_the_wall_below_through_a_conical_ramp(
 fn a_tube_stepping_between_thicknesses_all_round_meets_through_a_whole_turn_of_a_ramp() {
     // A stepped bore (axis z): the 2.5 mm wall's mid-cylinder (r 17.25) up to z = 6, the 4 mm wall's (r 16.5)
     // from there up; each patch's edge at the step is a whole circle, starting where it ends.
-    use std::f64::consts::TAU;
     let edges = [arc(0, 4.0, 16.5, 6.0, (TAU, 0.0), -DVec3::Z), arc(1, 2.5, 17.25, 6.0, (0.0, TAU), DVec3::Z)];
     let bridges = step_bridges(&edges);
     assert_eq!(bridges.len(), 1, "{bridges:?}");
