@@ -153,15 +153,7 @@ def fuse(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         or not all(isinstance(b, int) and not isinstance(b, bool) and b >= 0 for b in bodies)
     ):
         raise BadArgs(f"`bodies` must list a body number (integer >= 0) per patch, got {bodies!r}")
-    fallbacks = args.get("fallbacks")
-    if fallbacks is not None and (
-        not isinstance(fallbacks, list)
-        or len(fallbacks) != len(handles)
-        or not all(h is None or (isinstance(h, int) and not isinstance(h, bool)) for h in fallbacks)
-    ):
-        raise BadArgs(f"`fallbacks` must list a patch handle or null per patch, got {fallbacks!r}")
-    spare = [None if h is None else store.get(h) for h in fallbacks] if fallbacks is not None else None
-    fused, described = patch_fuse.fuse([store.get(h) for h in handles], fuzzy, split_internal, bodies, spare)
+    fused, described = patch_fuse.fuse([store.get(h) for h in handles], fuzzy, split_internal, bodies)
     return {"handle": store.put(fused), **described}
 
 

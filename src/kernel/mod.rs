@@ -36,25 +36,9 @@ pub trait Kernel {
         fuzzy: f64,
         split_internal: bool,
     ) -> Result<Fused, SidecarError> {
-        self.fuse_or_fall_back(patches, Vec::new(), bodies, fuzzy, split_internal).map(|(fused, _)| fused)
-    }
-
-    /// `fuse`, where a patch with a fallback (one per patch, or none at all) is fused as that instead when the
-    /// fuse fails and the patch's faces fail it locally; with the patches that were.
-    fn fuse_or_fall_back(
-        &mut self,
-        patches: Vec<Handle>,
-        fallbacks: Vec<Option<Handle>>,
-        bodies: &[usize],
-        fuzzy: f64,
-        split_internal: bool,
-    ) -> Result<(Fused, Vec<usize>), SidecarError> {
         let apart = bodies.iter().any(|&b| Some(&b) != bodies.first());
         let bodies = if apart { bodies.to_vec() } else { Vec::new() };
-        let mut reply =
-            self.call::<protocol::Fused>(&Request::Fuse { patches, fuzzy, split_internal, bodies, fallbacks })?;
-        let fell_back = std::mem::take(&mut reply.fell_back);
-        Ok((Fused::from(reply), fell_back))
+        self.call::<protocol::Fused>(&Request::Fuse { patches, fuzzy, split_internal, bodies }).map(Fused::from)
     }
 
     /// One shell per set of faces of the fused shape `handle`, the faces of each set of `merge` made one face

@@ -136,9 +136,6 @@ pub enum Request {
         split_internal: bool,
         #[serde(skip_serializing_if = "Vec::is_empty")]
         bodies: Vec<usize>,
-        /// One per patch (or none): what the patch is fused as when the fuse fails and the patch is a culprit.
-        #[serde(skip_serializing_if = "Vec::is_empty")]
-        fallbacks: Vec<Option<u64>>,
     },
     MakeShells {
         handle: u64,
@@ -335,9 +332,6 @@ pub struct Fused {
     pub handle: u64,
     pub faces: Vec<FusedFace>,
     pub edges: Vec<FusedEdge>,
-    /// The patches fused as their fallbacks.
-    #[serde(default)]
-    pub fell_back: Vec<usize>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]

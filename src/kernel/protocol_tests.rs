@@ -90,7 +90,6 @@ fn requests_encode_as_exact_json() {
                 fuzzy: 0.001,
                 split_internal: false,
                 bodies: vec![],
-                fallbacks: vec![],
             },
             r#"{"id":0,"op":"fuse","args":{"patches":[3,4],"fuzzy":0.001}}"#,
         ),
@@ -100,9 +99,8 @@ fn requests_encode_as_exact_json() {
                 fuzzy: 0.001,
                 split_internal: true,
                 bodies: vec![0, 2, 0],
-                fallbacks: vec![None, Some(7), None],
             },
-            r#"{"id":0,"op":"fuse","args":{"patches":[3,4,5],"fuzzy":0.001,"split_internal":true,"bodies":[0,2,0],"fallbacks":[null,7,null]}}"#,
+            r#"{"id":0,"op":"fuse","args":{"patches":[3,4,5],"fuzzy":0.001,"split_internal":true,"bodies":[0,2,0]}}"#,
         ),
         (
             Request::MakeShells { handle: 9, shells: vec![vec![0, 1], vec![2]], merge: vec![vec![0, 1]], fuzzy: 0.5 },

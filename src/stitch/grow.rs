@@ -136,8 +136,8 @@ pub(super) fn grow<K: Kernel>(
     }
     // (patch, index among the faces of the extension's handle) of each made strip and corner.
     let mut strips: Vec<(usize, usize)> = Vec::new();
-    // The joints of the made strips and steps, with their patch: tallied once the fuse says which stayed.
-    let mut made_joints: Vec<(usize, JointKey, f64)> = Vec::new();
+    // The joints of the made strips and steps: tallied once the fuse has made them.
+    let mut made_joints: Vec<(JointKey, f64)> = Vec::new();
     let mut extended_handle = None;
     if !planned.is_empty() || !steps.is_empty() {
         let corners = corners(&planned, fuzzy);
@@ -150,7 +150,7 @@ pub(super) fn grow<K: Kernel>(
             let length = fused.edges[request.edge].length;
             if made.area.is_some() {
                 strips.push((patch, strips.len()));
-                made_joints.push((patch, key, length));
+                made_joints.push((key, length));
             } else {
                 tally.add((key.0, key.1, "kernel_failed"), length);
             }
@@ -163,7 +163,7 @@ pub(super) fn grow<K: Kernel>(
         for ((patch, _, key, lengths), made) in steps.into_iter().zip(&extended.corners[corners.len()..]) {
             for length in lengths {
                 if made.area.is_some() {
-                    made_joints.push((patch, key.clone(), length));
+                    made_joints.push((key.clone(), length));
                 } else {
                     tally.add((key.0.clone(), key.1, "kernel_failed"), length);
                 }
@@ -184,23 +184,14 @@ pub(super) fn grow<K: Kernel>(
     for &(p, j) in &strips {
         strips_of[p].push(j);
     }
-    // A patch with strips falls back to its pieces alone when its strips make the fuse fail (an overshoot OCCT
-    // cannot intersect with its neighbours), rather than the whole pass failing.
     let mut order: Vec<usize> = Vec::new();
     let mut handles = Vec::new();
-    let mut fallbacks = Vec::new();
     for (k, (pieces, own)) in pieces_of.into_iter().zip(strips_of).enumerate() {
         let mut parts = Vec::new();
         // Only a patch with strips has faces to merge.
         let unify = (!own.is_empty()).then_some(fuzzy);
-        let mut fallback = None;
         if !pieces.is_empty() {
-            let alone = GatherPart { handle: fused.handle, faces: pieces };
-            if !own.is_empty() {
-                let gathered: Gathered = kernel.call(&Request::Gather { parts: vec![alone.clone()], unify: None })?;
-                fallback = Some(gathered.handle);
-            }
-            parts.push(alone);
+            parts.push(GatherPart { handle: fused.handle, faces: pieces });
         }
         if let (Some(handle), false) = (extended_handle, own.is_empty()) {
             parts.push(GatherPart { handle, faces: own });
@@ -211,14 +202,11 @@ pub(super) fn grow<K: Kernel>(
         let gathered: Gathered = kernel.call(&Request::Gather { parts, unify })?;
         order.push(k);
         handles.push(gathered.handle);
-        fallbacks.push(fallback);
     }
     let bodies: Vec<usize> = order.iter().map(|&k| patches[k].body).collect();
-    let (mut again, fell_back) = kernel.fuse_or_fall_back(handles, fallbacks, &bodies, fuzzy, true)?;
-    let fell_back: BTreeSet<usize> = fell_back.into_iter().map(|k| order[k]).collect();
-    for (patch, key, length) in made_joints {
-        let status = if fell_back.contains(&patch) { "kernel_failed" } else { key.2 };
-        tally.add((key.0, key.1, status), length);
+    let mut again = kernel.fuse(handles, &bodies, fuzzy, true)?;
+    for (key, length) in made_joints {
+        tally.add(key, length);
     }
     for face in &mut again.faces {
         face.patch = order[face.patch];

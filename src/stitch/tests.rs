@@ -43,11 +43,11 @@ fn probe(a: DVec3, b: DVec3, normal: DVec3, outward: DVec3, hits: &[(usize, f64,
 }
 
 /// The replies of a joints pass whose fused result has no free edge left: extend_edges (`strips` and `corners`
-/// made), one gather per patch and one more (its fallback) per patch `growing`, and the fuse.
-fn pass_replies(strips: usize, corners: usize, patches: usize, growing: usize) -> Vec<Value> {
+/// made), one gather per patch, and the fuse.
+fn pass_replies(strips: usize, corners: usize, patches: usize) -> Vec<Value> {
     let made = |k: usize| vec![json!({"area": 10.0, "error": null}); k];
     let mut out = vec![json!({"handle": 20, "strips": made(strips), "corners": made(corners)})];
-    out.extend((0..patches + growing).map(|p| json!({"handle": 30 + p, "faces": 1})));
+    out.extend((0..patches).map(|p| json!({"handle": 30 + p, "faces": 1})));
     let faces: Vec<Value> = (0..patches).map(|p| face(p, DVec3::Z)).collect();
     out.push(json!({"handle": 40, "faces": faces, "edges": []}));
     out
@@ -111,12 +111,12 @@ fn a_rib_standing_on_a_plate_grows_onto_it_as_a_t_and_the_plates_rim_stays_free(
         probe(rim.0, rim.1, DVec3::Z, DVec3::X, &[]),
     ]});
     let mut replies = vec![probes];
-    replies.extend(pass_replies(1, 0, 2, 1));
+    replies.extend(pass_replies(1, 0, 2));
     let patches = [info(2.0, (1, 0)), info(2.0, (1, 1))];
     let (stitched, kernel) =
         run(&fused, &patches, (DVec3::new(-50.0, 0.0, 0.0), DVec3::new(100.0, 10.0, 2.0)), replies);
 
-    assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "gather", "gather", "fuse"]);
+    assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "gather", "fuse"]);
     let (strips, corners) = extend_request(&kernel);
     assert_eq!(strips.len(), 1, "the rim edge does not grow");
     assert_eq!((strips[0].edge, strips[0].face, strips[0].onto_face), (0, 1, true));
@@ -131,7 +131,7 @@ fn a_rib_standing_on_a_plate_grows_onto_it_as_a_t_and_the_plates_rim_stays_free(
             _ => None,
         })
         .collect();
-    assert_eq!(unify, [false, false, true], "the rib's patch: its fallback, then merged with its strip");
+    assert_eq!(unify, [false, true], "the rib's patch is merged with its strip");
     assert_eq!(stitched.joints, [report(vec![1, 2], "t", 1, 10.0)]);
     assert_eq!(stitched.free, FreeEdges::default(), "the fused result has no free edge left");
 }
@@ -159,7 +159,7 @@ fn two_walls_meeting_at_a_corner_both_grow_past_each_other_as_an_l() {
     // face: an L, both growing by 1 plus a quarter thickness of overshoot.
     let (fused, probes) = l_corner();
     let mut replies = vec![probes];
-    replies.extend(pass_replies(2, 0, 2, 2));
+    replies.extend(pass_replies(2, 0, 2));
     let patches = [info(2.0, (1, 0)), info(2.0, (1, 1))];
     let (stitched, kernel) = run(&fused, &patches, (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies);
 
@@ -189,7 +189,7 @@ fn two_levels_of_a_wall_at_a_thickness_step_are_bridged_by_a_ramp() {
         probe(thick.0, thick.1, DVec3::Z, -DVec3::X, &[]),
     ]});
     let mut replies = vec![probes];
-    replies.extend(pass_replies(0, 1, 2, 1));
+    replies.extend(pass_replies(0, 1, 2));
     let patches = [info(2.0, (1, 0)), info(3.0, (1, 0))];
     let (stitched, kernel) = run(&fused, &patches, (DVec3::ZERO, DVec3::new(40.0, 10.0, 3.0)), replies);
 
@@ -206,7 +206,7 @@ fn two_levels_of_a_wall_at_a_thickness_step_are_bridged_by_a_ramp() {
         assert!(got.distance(want) < 1e-9, "{:?}", corners[0].points);
     }
     assert_eq!(corners[0].normal, DVec3::Z, "a ramp faces its patch's way");
-    // The ramp joins the thin level's patch: only its gather merges a strip (after its fallback's).
+    // The ramp joins the thin level's patch: only its gather merges a strip.
     let unify: Vec<bool> = kernel
         .requests
         .iter()
@@ -215,7 +215,7 @@ fn two_levels_of_a_wall_at_a_thickness_step_are_bridged_by_a_ramp() {
             _ => None,
         })
         .collect();
-    assert_eq!(unify, [false, true, false]);
+    assert_eq!(unify, [true, false]);
     assert_eq!(stitched.joints, [report(vec![1, 2], "step", 2, 20.0)]);
 }
 
@@ -257,11 +257,9 @@ fn a_pass_the_kernel_fails_with_a_curved_rim_strip_is_made_again_with_straight_e
     let replies = vec![
         probes,
         json!({"handle": 20, "strips": made(2), "corners": []}),
-        json!({"handle": 29, "faces": 1}),
         json!({"handle": 30, "faces": 1}),
         json!({"error": {"code": "kernel_failed", "message": "the fuse gave up"}}),
         json!({"handle": 21, "strips": made(1), "corners": []}),
-        json!({"handle": 28, "faces": 1}),
         json!({"handle": 31, "faces": 1}),
         json!({"handle": 40, "faces": [face(0, DVec3::Z)], "edges": []}),
     ];
@@ -269,7 +267,7 @@ fn a_pass_the_kernel_fails_with_a_curved_rim_strip_is_made_again_with_straight_e
 
     assert_eq!(
         kernel.ops(),
-        ["probe_edges", "extend_edges", "gather", "gather", "fuse", "extend_edges", "gather", "gather", "fuse"]
+        ["probe_edges", "extend_edges", "gather", "fuse", "extend_edges", "gather", "fuse"]
     );
     let grown: Vec<Vec<usize>> = kernel
         .requests
@@ -293,7 +291,6 @@ fn a_failed_pass_growing_no_curved_edge_is_not_made_again() {
     let replies = vec![
         json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[])]}),
         json!({"handle": 20, "strips": [{"area": 7.0, "error": null}], "corners": []}),
-        json!({"handle": 29, "faces": 1}),
         json!({"handle": 30, "faces": 1}),
         json!({"error": {"code": "kernel_failed", "message": "the fuse gave up"}}),
     ];
@@ -301,22 +298,20 @@ fn a_failed_pass_growing_no_curved_edge_is_not_made_again() {
     let mut kernel = FakeKernel::new(replies);
     let result = stitch(&mut kernel, &fused, &[true], &[info(2.0, (1, 0))], &[mesh], 1e-4);
     assert_eq!(result.err().and_then(|e| e.code().map(str::to_string)), Some("kernel_failed".to_string()));
-    assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "gather", "fuse"]);
+    assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "fuse"]);
 }
 
 /// The replies for a plate whose straight edge a-b (probed as `edge_probe`) the joints pass grows but leaves
-/// where it was, up to the rims pass's fuse: the probe, the strip, the patch's fallback and gather, the fuse
+/// where it was, up to the rims pass's fuse: the probe, the strip, the patch's gather, the fuse
 /// (handle 40, the edge still free), the probe of its free edges, then the rims pass's strip and gathers.
 fn joints_then_rims_replies(a: DVec3, b: DVec3, edge_probe: &Value) -> Vec<Value> {
     vec![
         edge_probe.clone(),
         json!({"handle": 20, "strips": [{"area": 7.0, "error": null}], "corners": []}),
-        json!({"handle": 29, "faces": 1}),
         json!({"handle": 30, "faces": 1}),
         json!({"handle": 40, "faces": [face(0, DVec3::Z)], "edges": [edge(a, b, &[0])]}),
         edge_probe.clone(),
         json!({"handle": 21, "strips": [{"area": 7.0, "error": null}], "corners": []}),
-        json!({"handle": 28, "faces": 1}),
         json!({"handle": 31, "faces": 1}),
     ]
 }
@@ -340,11 +335,9 @@ fn a_later_pass_the_kernel_fails_leaves_the_earlier_stitching_and_says_so() {
             "probe_edges",
             "extend_edges",
             "gather",
-            "gather",
             "fuse",
             "probe_edges",
             "extend_edges",
-            "gather",
             "gather",
             "fuse",
             "probe_edges"
@@ -354,27 +347,6 @@ fn a_later_pass_the_kernel_fails_leaves_the_earlier_stitching_and_says_so() {
     assert_eq!(stitched.failed_passes, ["the rims pass: the fuse gave up"]);
     assert_eq!(stitched.joints, [report(vec![1], "rim", 1, 10.0)], "the rims pass's strip is not counted");
     assert_eq!(stitched.free.open_edges, 1);
-}
-
-#[test]
-fn a_patch_whose_strips_fail_the_fuse_falls_back_to_its_pieces_and_its_joints_count_as_failed() {
-    // The L of two walls above: the fuse fails with the wall's strip and succeeds with the wall as its pieces
-    // alone (the sidecar names it as fallen back). The floor's joint stands; the wall's counts as failed.
-    let (fused, probes) = l_corner();
-    let mut replies = vec![probes];
-    replies.extend(pass_replies(2, 0, 2, 2));
-    let fused_reply = replies.last_mut().unwrap();
-    fused_reply["fell_back"] = json!([1]);
-    let patches = [info(2.0, (1, 0)), info(2.0, (1, 1))];
-    let (stitched, kernel) = run(&fused, &patches, (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies);
-
-    let fallbacks = kernel.requests.iter().find_map(|r| match r {
-        Request::Fuse { fallbacks, .. } => Some(fallbacks.clone()),
-        _ => None,
-    });
-    assert_eq!(fallbacks, Some(vec![Some(30), Some(32)]), "each growing patch offers its pieces alone");
-    let failed = JointReport { patches: vec![1, 2], kind: "l", status: "kernel_failed", edges: 1, length: 10.0 };
-    assert_eq!(stitched.joints, [report(vec![1, 2], "l", 1, 10.0), failed]);
 }
 
 #[test]

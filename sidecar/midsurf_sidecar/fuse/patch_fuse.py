@@ -4,11 +4,9 @@ share their crossing edges; each face of the result traced back to its patch thr
 from typing import Any
 
 from OCP.BOPAlgo import BOPAlgo_Builder
-from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Section
-from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeVertex
 from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Line, GeomAbs_Plane
@@ -27,31 +25,23 @@ def fuse(
     fuzzy: float,
     split_internal: bool = False,
     bodies: list[int] | None = None,
-    fallbacks: list[TopoDS_Shape | None] | None = None,
 ) -> tuple[TopoDS_Shape, dict[str, Any]]:
-    """(F, the reply's `faces`, `edges` and `fell_back`). `bodies` (one per patch, optional): patches of different
-    bodies are fused apart and F holds the faces of every body's fuse, so that bodies that only touch never share
-    an edge (nor split each other where they overlap). `fallbacks` (one per patch, optional, None for none): what
-    a patch is fused as instead when the fuse fails and the patch is among its culprits (_culprits); `fell_back`
-    lists the patches that were.
+    """(F, the reply's `faces` and `edges`). `bodies` (one per patch, optional): patches of different bodies are
+    fused apart and F holds the faces of every body's fuse, so that bodies that only touch never share an edge
+    (nor split each other where they overlap).
     """
-    spare: list[TopoDS_Shape | None] = fallbacks if fallbacks is not None else [None] * len(patches)
     groups: dict[int, list[int]] = {}
     for k, body in enumerate(bodies if bodies is not None else [0] * len(patches)):
         groups.setdefault(body, []).append(k)
     if len(groups) <= 1:
-        fused, face_map, patch_of, fell_back = _fuse_one(patches, fuzzy, split_internal, spare)
-        return fused, {**describe(fused, face_map, patch_of), "fell_back": fell_back}
+        fused, face_map, patch_of = _fuse_one(patches, fuzzy, split_internal)
+        return fused, describe(fused, face_map, patch_of)
     fused, maker = TopoDS_Compound(), BRep_Builder()
     maker.MakeCompound(fused)
     owner: list[tuple[TopoDS_Shape, int]] = []
-    fell_back = []
     for members in groups.values():
-        part, part_faces, part_patch, part_fell = _fuse_one(
-            [patches[k] for k in members], fuzzy, split_internal, [spare[k] for k in members]
-        )
+        part, part_faces, part_patch = _fuse_one([patches[k] for k in members], fuzzy, split_internal)
         owner.extend((part_faces.FindKey(i + 1), members[p]) for i, p in enumerate(part_patch))
-        fell_back.extend(members[p] for p in part_fell)
         maker.Add(fused, part)
     face_map = indexed_map(fused, TopAbs_FACE)
     patch_of = [-1] * face_map.Size()
@@ -59,13 +49,13 @@ def fuse(
         patch_of[face_map.FindIndex(face) - 1] = patch
     if -1 in patch_of:
         raise KernelError("a face of a body's fuse is missing from the whole")
-    return fused, {**describe(fused, face_map, patch_of), "fell_back": sorted(fell_back)}
+    return fused, describe(fused, face_map, patch_of)
 
 
 def _fuse_one(
-    patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool, fallbacks: list[TopoDS_Shape | None]
-) -> tuple[TopoDS_Shape, IndexedShapeMap, list[int], list[int]]:
-    """`fuse` of patches all of one body: (F, its faces, the patch of each, the patches fused as their fallbacks).
+    patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool
+) -> tuple[TopoDS_Shape, IndexedShapeMap, list[int]]:
+    """`fuse` of patches all of one body: (F, its faces, the patch of each).
 
     Every FACE of every patch is an argument of its own, not every patch: BOPAlgo_Builder does not
     intersect the sub-shapes of one argument with each other, so the separately offset faces of a patch
@@ -73,20 +63,8 @@ def _fuse_one(
     (BOPAlgo_AlertTooFewArguments). `split_internal`: faces are split along the T-joints ending inside them
     (_internal_edge_lines); costly, so only for the result of a stitching pass. A seam lists its face twice,
     as the two sides it joins: it is no free edge (closed faces are split at the seam only in make_shells).
-
-    When the fuse fails, the patches whose faces fail it locally (_culprits) are fused as their fallbacks, once:
-    a face OCCT cannot intersect with its neighbours (a strip grown across a fillet's edge) would otherwise
-    lose every patch of the part its share of the pass.
     """
-    fell_back: list[int] = []
-    try:
-        inputs, input_patch, builder = _fuse_faces(patches, fuzzy)
-    except KernelError:
-        fell_back = _culprits(patches, fallbacks, fuzzy)
-        if not fell_back:
-            raise
-        patches = [fallbacks[k] if k in fell_back else patch for k, patch in enumerate(patches)]  # type: ignore[misc]
-        inputs, input_patch, builder = _fuse_faces(patches, fuzzy)
+    inputs, input_patch, builder = _fuse_faces(patches, fuzzy)
     if builder is None:
         # Nothing to intersect (and BOPAlgo refuses fewer than 2 arguments): F holds the face, if any.
         fused, maker = TopoDS_Compound(), BRep_Builder()
@@ -103,7 +81,7 @@ def _fuse_one(
         split_fused, patch_of = _split_faces(fused, face_map, patch_of, _internal_edge_lines(fused, face_map), fuzzy)
         if split_fused is not fused:
             fused, face_map = split_fused, indexed_map(split_fused, TopAbs_FACE)
-    return fused, face_map, patch_of, fell_back
+    return fused, face_map, patch_of
 
 
 def _fuse_faces(
@@ -126,53 +104,6 @@ def _fuse_faces(
     # The patches' faces overlap only where fuzzy merges them: their pieces must cover them.
     check_area_kept(builder, faces, fuzzy)
     return inputs, input_patch, builder
-
-
-# How many times the faces of a failed fuse its culprit search may fuse in local probes (_culprits).
-CULPRIT_BUDGET = 3
-
-
-def _culprits(patches: list[TopoDS_Shape], fallbacks: list[TopoDS_Shape | None], fuzzy: float) -> list[int]:
-    """The patches (with a fallback) whose faces fail a fuse with the faces of the other patches near them (boxes
-    within the fuzzy value): a failure of the whole fuse comes from where some faces meet, and a local fuse of
-    those faces fails the same way, at a fraction of the cost. Not where that is no cheaper: a patch whose near
-    faces are more than half of all is not probed, and there is no search (no culprits) when the probes would
-    fuse more than CULPRIT_BUDGET times as many faces as the whole fuse (a curved cover whose large faces reach
-    every other would otherwise fuse the whole part once per patch). The probes are sized first, from the boxes
-    alone: a search that would run out of budget part way gives no culprits either, after all its fuses."""
-    boxes = [[(face, _box(face, fuzzy)) for face in subshapes(patch, TopAbs_FACE)] for patch in patches]
-    total = sum(len(own) for own in boxes)
-    probes: list[tuple[int, list[TopoDS_Shape]]] = []
-    for k, own in enumerate(boxes):
-        if fallbacks[k] is None or not own:
-            continue
-        near = IndexedShapeMap()
-        for face, _ in own:
-            near.Add(face)
-        for j, other in enumerate(boxes):
-            if j == k:
-                continue
-            for face, box in other:
-                if any(not box.IsOut(mine) for _, mine in own):
-                    near.Add(face)
-        if 2 * near.Size() <= total:
-            probes.append((k, [near.FindKey(i + 1) for i in range(near.Size())]))
-    if sum(len(faces) for _, faces in probes) > CULPRIT_BUDGET * total:
-        return []
-    culprits = []
-    for k, faces in probes:
-        try:
-            _fuse_faces(faces, fuzzy)
-        except KernelError:
-            culprits.append(k)
-    return culprits
-
-
-def _box(face: TopoDS_Shape, fuzzy: float) -> Bnd_Box:
-    box = Bnd_Box()
-    BRepBndLib.Add_s(face, box, False)
-    box.Enlarge(fuzzy)
-    return box
 
 
 def _internal_edge_lines(fused: TopoDS_Shape, face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
