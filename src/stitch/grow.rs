@@ -136,8 +136,6 @@ pub(super) fn grow<K: Kernel>(
     }
     // (patch, index among the faces of the extension's handle) of each made strip and corner.
     let mut strips: Vec<(usize, usize)> = Vec::new();
-    // The joints of the made strips and steps: tallied once the fuse has made them.
-    let mut made_joints: Vec<(JointKey, f64)> = Vec::new();
     let mut extended_handle = None;
     if !planned.is_empty() || !steps.is_empty() {
         let corners = corners(&planned, fuzzy);
@@ -148,9 +146,10 @@ pub(super) fn grow<K: Kernel>(
         })?;
         for ((patch, request, key, _), made) in planned.into_iter().zip(&extended.strips) {
             let length = fused.edges[request.edge].length;
+            // A pass whose fuse fails takes its tally back (`run_pass`).
             if made.area.is_some() {
                 strips.push((patch, strips.len()));
-                made_joints.push((key, length));
+                tally.add(key, length);
             } else {
                 tally.add((key.0, key.1, "kernel_failed"), length);
             }
@@ -163,7 +162,7 @@ pub(super) fn grow<K: Kernel>(
         for ((patch, _, key, lengths), made) in steps.into_iter().zip(&extended.corners[corners.len()..]) {
             for length in lengths {
                 if made.area.is_some() {
-                    made_joints.push((key.clone(), length));
+                    tally.add(key.clone(), length);
                 } else {
                     tally.add((key.0.clone(), key.1, "kernel_failed"), length);
                 }
@@ -205,9 +204,6 @@ pub(super) fn grow<K: Kernel>(
     }
     let bodies: Vec<usize> = order.iter().map(|&k| patches[k].body).collect();
     let mut again = kernel.fuse(handles, &bodies, fuzzy, true)?;
-    for (key, length) in made_joints {
-        tally.add(key, length);
-    }
     for face in &mut again.faces {
         face.patch = order[face.patch];
     }
