@@ -7,10 +7,12 @@ with one map of the entities already translated, so the shared edge stays one ed
 (two manifold shells sharing three edges): read back as 2 components from two surface models, 1 from one.
 """
 
+import bisect
 import re
 
+_MODEL_NAME = re.compile(r"SHELL_BASED_SURFACE_MODEL")
+_STRING = re.compile(r"'(?:[^']|'')*'")
 _MODEL = re.compile(r"^#(\d+)\s*=\s*SHELL_BASED_SURFACE_MODEL\s*\(\s*'([^']*)'\s*,\s*\(([^()]*)\)\s*\)$", re.S)
-_REFERENCE = re.compile(r"#(\d+)")
 
 
 def merge_surface_models(path: str) -> None:
@@ -19,22 +21,34 @@ def merge_surface_models(path: str) -> None:
     one representation's list of items (a style, a name): nothing is merged that the file ties to a model."""
     with open(path, encoding="latin-1", newline="") as f:
         text = f.read()
-    records = _records(text)
+    data = text.find("DATA;")
+    stop = text.find("ENDSEC;", data)
+    # The DATA section with every string's inside blanked (same length, so offsets hold): a ';' or '#12' in a
+    # name is no record end or reference. Whole-file scans by the regex engine, not a loop over characters: a
+    # mid-surface of a thousand freeform faces is a file of 30 MB.
+    blank = _STRING.sub(lambda m: "'" + " " * (len(m.group()) - 2) + "'", text[data:stop])
+    ends = [data + m.start() for m in re.finditer(";", blank)]
+    starts = [data + len("DATA;")] + [end + 1 for end in ends[:-1]]
     models = {}
-    for start, end in records:
-        match = _MODEL.match(text[start:end].strip())
-        if match:
-            models[match.group(1)] = (start, end, [r.strip() for r in match.group(3).split(",")])
+    for k in sorted({bisect.bisect_left(ends, data + m.start()) for m in re.finditer(_MODEL_NAME, blank)}):
+        if k < len(ends):
+            match = _MODEL.match(text[starts[k] : ends[k]].strip())
+            if match:
+                models[match.group(1)] = (starts[k], ends[k], [r.strip() for r in match.group(3).split(",")])
     if len(models) < 2:
         return
     referrers: dict[str, list[tuple[int, int]]] = {m: [] for m in models}
-    for start, end in records:
-        record = text[start:end]
-        own = record.split("=", 1)[0].strip().lstrip("#")
-        body = record.split("=", 1)[1] if "=" in record else ""
-        for ref in _REFERENCE.findall(_without_strings(body)):
-            if ref in referrers and ref != own:
-                referrers[ref].append((start, end))
+    pattern = re.compile("#(" + "|".join(sorted(models)) + r")(?!\d)")
+    for m in pattern.finditer(blank):
+        at = data + m.start()
+        k = bisect.bisect_left(ends, at)
+        if k == len(ends):
+            continue  # past the last record's ';'
+        start, end = starts[k], ends[k]
+        equals = text.find("=", start, end)
+        own = text[start:equals].strip().lstrip("#") if equals >= 0 else None
+        if equals >= 0 and at > equals and m.group(1) != own:
+            referrers[m.group(1)].append((start, end))
     holders = {span for spans in referrers.values() for span in spans}
     if len(holders) != 1 or any(len(spans) != 1 for spans in referrers.values()):
         return
@@ -52,26 +66,10 @@ def merge_surface_models(path: str) -> None:
     start, end, _ = models[first]
     edits.append((start, end, f"\n#{first} = SHELL_BASED_SURFACE_MODEL('',({','.join(shells)}))"))
     edits.append((holder_start, holder_end, holder))
+    pieces, at = [], len(text)
     for start, end, replacement in sorted(edits, reverse=True):
-        text = text[:start] + replacement + text[end:]
+        pieces += [text[end:at], replacement]
+        at = start
+    pieces.append(text[:at])
     with open(path, "w", encoding="latin-1", newline="") as f:
-        f.write(text)
-
-
-def _records(text: str) -> list[tuple[int, int]]:
-    """(start, end) of each entity record of the DATA section, without its ';' (strings may hold ';')."""
-    data = text.find("DATA;")
-    stop = text.find("ENDSEC;", data)
-    records, start, quoted = [], data + len("DATA;"), False
-    for i in range(start, stop):
-        c = text[i]
-        if c == "'":
-            quoted = not quoted  # a doubled quote inside a string toggles twice
-        elif c == ";" and not quoted:
-            records.append((start, i))
-            start = i + 1
-    return records
-
-
-def _without_strings(record: str) -> str:
-    return re.sub(r"'(?:[^']|'')*'", "''", record)
+        f.write("".join(reversed(pieces)))
