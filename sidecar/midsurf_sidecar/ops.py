@@ -11,7 +11,7 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 
 from .constants import CONFUSION, RIM_SHARE
-from .describe import face_graph
+from .describe import face_graph, face_mesh
 from .fuse import patch_fuse
 from .geom import booleans
 from .geom.topology import indexed_map, surface_props, volume
@@ -63,6 +63,10 @@ def describe(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     shape = store.get(require_handle(args))
     mesh_tolerance = require_positive(args, "mesh_tolerance") if optional_bool(args, "mesh", False) else None
     return face_graph.describe(shape, mesh_tolerance)
+
+
+def mesh(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
+    return face_mesh.face_meshes(store.get(require_handle(args)), require_positive(args, "mesh_tolerance"))
 
 
 def make_patch(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
@@ -345,6 +349,7 @@ OPS: dict[str, Op] = {
     "ping": ping,
     "load_step": load_step,
     "describe": describe,
+    "mesh": mesh,
     "make_patch": make_patch,
     "fuse": fuse,
     "make_shells": make_shells,

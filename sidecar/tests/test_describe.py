@@ -293,3 +293,13 @@ def test_e_plate_convexity_agrees_with_brepoffset_analyse(e_plate):
             assert names[intervals.First().Type()] == edge["convexity"], edge
             compared += 1
     assert compared > 100
+
+
+@pytest.mark.parametrize("make", [plate_with_hole, sphere, bent_sheet])
+def test_mesh_gives_the_triangles_describe_gives_and_nothing_else(client, tmp_path, make):
+    handle = client.load(make(), tmp_path)
+    described = client.ok("describe", handle=handle, mesh=True, mesh_tolerance=0.05)
+    meshed = client.ok("mesh", handle=handle, mesh_tolerance=0.05)
+    assert list(meshed) == ["faces"]
+    assert meshed["faces"] == [f["mesh"] for f in described["faces"]]
+    assert all(m["triangles"] for m in meshed["faces"])

@@ -107,6 +107,11 @@ pub enum Request {
         mesh: bool,
         mesh_tolerance: f64,
     },
+    /// The triangles of every face of a shape, without the rest of its face graph.
+    Mesh {
+        handle: u64,
+        mesh_tolerance: f64,
+    },
     /// `clip`: each face cut to the footprint of its partners (planar faces only).
     MakePatch {
         handle: u64,
@@ -190,6 +195,7 @@ impl Request {
             Request::Ping {} => "ping",
             Request::LoadStep { .. } => "load_step",
             Request::Describe { .. } => "describe",
+            Request::Mesh { .. } => "mesh",
             Request::MakePatch { .. } => "make_patch",
             Request::Fuse { .. } => "fuse",
             Request::MakeShells { .. } => "make_shells",
@@ -352,6 +358,12 @@ pub struct Shells {
 }
 
 /// Where a ray along a free edge's outward direction meets a target face's support surface.
+/// The `mesh` reply: one mesh per face of the shape, in its face order.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+pub struct FaceMeshes {
+    pub faces: Vec<crate::model::face_graph::Mesh>,
+}
+
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct Hit {
     pub face: usize,

@@ -3,10 +3,10 @@
 
 use crate::geom::coverage::{self, Coverage, Triangles};
 use crate::geom::inside::SolidMesh;
-use crate::kernel::protocol::Request;
+use crate::kernel::protocol::{FaceMeshes, Request};
 use crate::kernel::{Kernel, SidecarError};
 use crate::load::Part;
-use crate::model::face_graph::{Face, FaceGraph};
+use crate::model::face_graph::Mesh;
 use crate::model::shapes::{Fused, Shells};
 use crate::model::warning::Warning;
 use crate::pairing::driver::SolidPairing;
@@ -62,13 +62,12 @@ fn per_solid<K: Kernel>(kernel: &mut K, written: &Written) -> Result<Vec<Option<
         .filter(|&i| thin(i))
         .map(|i| part.solids[i].mesh_tolerance)
         .fold(f64::INFINITY, f64::min);
-    let meshed: Option<FaceGraph> = if shells.faces.is_empty() || !mesh_tolerance.is_finite() {
+    let meshed: Option<FaceMeshes> = if shells.faces.is_empty() || !mesh_tolerance.is_finite() {
         None
     } else {
-        let request = Request::Describe { handle: shells.handle, mesh: true, mesh_tolerance };
-        Some(kernel.call(&request)?)
+        Some(kernel.call(&Request::Mesh { handle: shells.handle, mesh_tolerance })?)
     };
-    // Per face of the shells (the describe keeps their order): its patch.
+    // Per face of the shells (the meshes keep their order): its patch.
     let patch_of = |j: usize| fused.faces[shells.faces[j]].patch;
     // A patch placed on a skin (--position) lies `to_mid` from its wall's middle: its reach grows by as much.
     let reach: Vec<f64> = made.iter().map(|m| coverage::reach(m.plan.thickness.mean) + m.plan.to_mid.abs()).collect();
@@ -79,9 +78,13 @@ fn per_solid<K: Kernel>(kernel: &mut K, written: &Written) -> Result<Vec<Option<
         let body = body_of_solid[i];
         let own = |j: usize| body_of_solid[made[patch_of(j)].solid - 1] == body;
         let patches = Triangles::new(
-            meshed.iter().flat_map(|g| g.faces.iter()).filter(|f| own(f.id)).flat_map(|f| tagged(f, patch_of(f.id))),
+            meshed
+                .iter()
+                .flat_map(|m| m.faces.iter().enumerate())
+                .filter(|(j, _)| own(*j))
+                .flat_map(|(j, m)| triangles(Some(m), patch_of(j))),
         );
-        let faces = Triangles::new(solid.graph.faces.iter().flat_map(|f| tagged(f, f.id)));
+        let faces = Triangles::new(solid.graph.faces.iter().flat_map(|f| triangles(f.mesh.as_ref(), f.id)));
         let samples = coverage::material_samples(&SolidMesh::of_faces(solid.graph.faces.iter())?);
         coverage::coverage(&samples, &patches, &reach, &faces)
     });
@@ -115,8 +118,8 @@ fn warnings(coverage: &[Option<Coverage>]) -> Vec<Warning> {
         .collect()
 }
 
-fn tagged(face: &Face, tag: usize) -> impl Iterator<Item = ([glam::DVec3; 3], usize)> + '_ {
-    face.mesh.iter().flat_map(move |m| m.triangles.iter().map(move |t| (t.map(|i| m.vertices[i as usize]), tag)))
+fn triangles(mesh: Option<&Mesh>, tag: usize) -> impl Iterator<Item = ([glam::DVec3; 3], usize)> + '_ {
+    mesh.into_iter().flat_map(move |m| m.triangles.iter().map(move |t| (t.map(|i| m.vertices[i as usize]), tag)))
 }
 
 #[cfg(test)]
@@ -173,7 +176,7 @@ mod tests {
             body_of_solid: &[0],
         };
         let (coverage, warnings) = measure(&mut kernel, &written);
-        assert_eq!(kernel.ops(), ["describe"]);
+        assert_eq!(kernel.ops(), ["mesh"]);
         assert_eq!(coverage, vec![None]);
         assert_eq!(warnings.len(), 1);
         assert_eq!(warnings[0].code, "coverage_not_measured");

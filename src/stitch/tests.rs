@@ -265,10 +265,7 @@ fn a_pass_the_kernel_fails_with_a_curved_rim_strip_is_made_again_with_straight_e
     ];
     let (stitched, kernel) = run(&fused, &[info(2.0, (1, 0))], (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies);
 
-    assert_eq!(
-        kernel.ops(),
-        ["probe_edges", "extend_edges", "gather", "fuse", "extend_edges", "gather", "fuse"]
-    );
+    assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "fuse", "extend_edges", "gather", "fuse"]);
     let grown: Vec<Vec<usize>> = kernel
         .requests
         .iter()
