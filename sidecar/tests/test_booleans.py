@@ -71,19 +71,6 @@ def test_the_fuse_runs_on_one_thread_when_asked(monkeypatch):
     assert all(serial.Modified(face).Size() == 2 for face in faces)
 
 
-def test_a_parallel_split_gives_the_serial_pieces_and_runs_serial_when_asked(monkeypatch):
-    plate, wall = horizontal(), vertical(30)
-    monkeypatch.delenv("MIDSURF_SERIAL_BOOLEANS", raising=False)
-    assert not booleans.split(plate, [wall], 1e-6).RunParallel(), "small splits stay on one thread"
-    parallel = booleans.split(plate, [wall], 1e-6, parallel=True)
-    assert parallel.RunParallel()
-    monkeypatch.setenv("MIDSURF_SERIAL_BOOLEANS", "1")
-    serial = booleans.split(plate, [wall], 1e-6, parallel=True)
-    assert not serial.RunParallel()
-    areas = [sorted(round(surface_props(f).Mass(), 9) for f in s.Modified(plate)) for s in (parallel, serial)]
-    assert areas[0] == areas[1] == [1200.0, 1200.0]
-
-
 class Merger:
     """Stands in for ShapeUpgrade_UnifySameDomain: keeps the shape it is given, answers `result` (or that shape)."""
 

@@ -23,11 +23,10 @@ SERIAL_VAR = "MIDSURF_SERIAL_BOOLEANS"
 
 
 def split(
-    shape: TopoDS_Shape, tools: list[TopoDS_Shape], fuzzy: float, keep_area: bool = False, parallel: bool = False
+    shape: TopoDS_Shape, tools: list[TopoDS_Shape], fuzzy: float, keep_area: bool = False
 ) -> BRepAlgoAPI_Splitter | None:
     """`shape` split by `tools` (non-destructive, fuzzy); None when OCCT gives up, or with `keep_area` when the
-    pieces do not cover the faces (check_area_kept). `parallel`: on all cores, as the general fuse (and with
-    its serial fallback), for the splits big enough to pay for the threads."""
+    pieces do not cover the faces (check_area_kept)."""
     splitter = BRepAlgoAPI_Splitter()
     arguments, tool_list = List_TopoDS_Shape(), List_TopoDS_Shape()
     arguments.Append(shape)
@@ -37,7 +36,6 @@ def split(
     splitter.SetTools(tool_list)
     splitter.SetFuzzyValue(fuzzy)
     splitter.SetNonDestructive(True)
-    splitter.SetRunParallel(parallel and os.environ.get(SERIAL_VAR) != "1")
     splitter.Build()
     if not splitter.IsDone():
         return None

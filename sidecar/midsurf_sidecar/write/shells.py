@@ -223,9 +223,7 @@ def _split_pieces(
     builder.MakeCompound(kept)
     for faces in unsplit.values():
         builder.Add(kept, faces[0])
-    # In parallel: a mid-surface of 1,107 freeform faces, 199 of them holding joints inside (529 cuts), splits
-    # in 20 s instead of 34, into the same pieces.
-    splitter = split(kept, tools, fuzzy, parallel=True)
+    splitter = split(kept, tools, fuzzy)
     if splitter is None:
         return None
     # Listing an empty Modified() costs as much as a split face's (KERNEL_NOTES): ask its size first.
