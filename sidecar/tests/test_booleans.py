@@ -2,8 +2,12 @@
 leaves the faces it was given as they were."""
 
 import pytest
-from OCP.BRep import BRep_Builder
+from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_NurbsConvert
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
+from OCP.Geom import Geom_OffsetSurface
 from OCP.TopAbs import TopAbs_FACE, TopAbs_WIRE
+from OCP.TopoDS import TopoDS
 
 from midsurf_sidecar.geom import booleans
 from midsurf_sidecar.geom.booleans import check_area_kept, general_fuse, unify
@@ -69,6 +73,29 @@ def test_the_fuse_runs_on_one_thread_when_asked(monkeypatch):
     serial = general_fuse(faces, 1e-6)
     assert not serial.RunParallel()
     assert all(serial.Modified(face).Size() == 2 for face in faces)
+
+
+def offset_faces(shape):
+    """Each face of `shape` as a B-spline, offset by 1 mm (Geom_OffsetSurface), as a mid-patch of a freeform wall."""
+    faces = []
+    for face in subshapes(BRepBuilderAPI_NurbsConvert(shape, True).Shape(), TopAbs_FACE):
+        surface = BRep_Tool.Surface_s(TopoDS.Face(face))
+        faces.append(BRepBuilderAPI_MakeFace(Geom_OffsetSurface(surface, 1.0), 1e-7).Face())
+    return faces
+
+
+def test_a_fuse_of_an_offset_freeform_surface_with_a_pole_runs_on_one_thread(monkeypatch):
+    # OCCT's evaluation of such an offset near its pole is not thread-safe (a core dump had two threads in
+    # Geom_OsculatingSurface); offsets of freeform surfaces without a pole keep both threads.
+    monkeypatch.delenv("MIDSURF_SERIAL_BOOLEANS", raising=False)
+    dome = offset_faces(BRepPrimAPI_MakeSphere(10.0).Shape())
+    flat = offset_faces(BRepPrimAPI_MakeBox(20.0, 20.0, 20.0).Shape())
+    assert [booleans._osculating(f) for f in dome] == [True]
+    assert not any(booleans._osculating(f) for f in flat)
+    assert not booleans._osculating(BRepBuilderAPI_NurbsConvert(BRepPrimAPI_MakeSphere(10.0).Shape(), True).Shape())
+    plate = horizontal()  # z = 1: it crosses the dome (radius 11 about the origin)
+    assert not general_fuse(dome + [plate], 1e-6).RunParallel()
+    assert general_fuse(flat[:1] + [plate], 1e-6).RunParallel()
 
 
 class Merger:
