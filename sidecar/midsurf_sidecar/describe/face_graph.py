@@ -25,7 +25,7 @@ from ..geom.topology import IndexedShapeMap, face_wires, indexed_map, surface_pr
 from ..geom.vectors import Vec, bbox_json, norm, sub, xyz
 from ..protocol.errors import KernelError, one_line
 from .edge_convexity import classify, dihedral_angle
-from .face_mesh import face_mesh, mesh_shape
+from .face_mesh import face_mesh, mesh_shape, no_mesh
 from .surface_kind import describe_surface
 
 CURVE_KINDS = {
@@ -193,7 +193,7 @@ def _degraded_face(
         try:
             described["mesh"] = face_mesh(face, normals.reversed)
         except Exception:
-            described["mesh"] = {"vertices": [], "normals": [], "triangles": []}
+            described["mesh"] = no_mesh()
     return described
 
 

@@ -113,8 +113,13 @@ def face_meshes(shape: TopoDS_Shape, tolerance: float) -> dict[str, Any]:
         try:
             meshes.append(face_mesh(face, face.Orientation() == TopAbs_REVERSED))
         except Exception:
-            meshes.append({"vertices": [], "normals": [], "triangles": []})
+            meshes.append(no_mesh())
     return {"faces": meshes}
+
+
+def no_mesh() -> dict[str, Any]:
+    """The mesh of a face the kernel could not mesh: no triangles."""
+    return {"vertices": [], "normals": [], "triangles": []}
 
 
 def face_mesh(face: TopoDS_Face, reversed_face: bool) -> dict[str, Any]:

@@ -58,8 +58,9 @@ def _osculating(shape: TopoDS_Shape) -> bool:
     such skins crashed in 4 of 5 parallel runs, each crash costing a whole serial rerun."""
     for face in subshapes(shape, TopAbs_FACE):
         surface = BRep_Tool.Surface_s(TopoDS.Face(face))
+        offset = False  # through any trimmed surfaces between the offset and its basis
         while isinstance(surface, (Geom_RectangularTrimmedSurface, Geom_OffsetSurface)):
-            offset = isinstance(surface, Geom_OffsetSurface)
+            offset = offset or isinstance(surface, Geom_OffsetSurface)
             surface = surface.BasisSurface()
             if offset and isinstance(surface, (Geom_BSplineSurface, Geom_BezierSurface)) and _has_pole(surface):
                 return True
