@@ -11,6 +11,7 @@ from OCP.TopoDS import TopoDS
 
 from midsurf_sidecar.geom import booleans
 from midsurf_sidecar.geom.booleans import check_area_kept, general_fuse, unify
+from midsurf_sidecar.geom.pole_offset import on_pole_offset
 from midsurf_sidecar.geom.topology import subshapes, surface_props
 from midsurf_sidecar.protocol.errors import KernelError
 from patch_shapes import horizontal, rectangle, vertical
@@ -90,9 +91,9 @@ def test_a_fuse_of_an_offset_freeform_surface_with_a_pole_runs_on_one_thread(mon
     monkeypatch.delenv("MIDSURF_SERIAL_BOOLEANS", raising=False)
     dome = offset_faces(BRepPrimAPI_MakeSphere(10.0).Shape())
     flat = offset_faces(BRepPrimAPI_MakeBox(20.0, 20.0, 20.0).Shape())
-    assert [booleans._osculating(f) for f in dome] == [True]
-    assert not any(booleans._osculating(f) for f in flat)
-    assert not booleans._osculating(BRepBuilderAPI_NurbsConvert(BRepPrimAPI_MakeSphere(10.0).Shape(), True).Shape())
+    assert [on_pole_offset(f) for f in dome] == [True]
+    assert not any(on_pole_offset(f) for f in flat)
+    assert not on_pole_offset(BRepBuilderAPI_NurbsConvert(BRepPrimAPI_MakeSphere(10.0).Shape(), True).Shape())
     plate = horizontal()  # z = 1: it crosses the dome (radius 11 about the origin)
     assert not general_fuse(dome + [plate], 1e-6).RunParallel()
     assert general_fuse(flat[:1] + [plate], 1e-6).RunParallel()

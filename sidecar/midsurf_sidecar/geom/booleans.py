@@ -5,7 +5,6 @@ surface."""
 import os
 
 from OCP.BOPAlgo import BOPAlgo_Builder
-from OCP.BRep import BRep_Tool
 from OCP.BRepAlgoAPI import BRepAlgoAPI_BuilderAlgo, BRepAlgoAPI_Common, BRepAlgoAPI_Splitter
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.BRepCheck import BRepCheck_Analyzer
@@ -13,11 +12,11 @@ from OCP.collections import List_TopoDS_Shape
 from OCP.Message import Message_Fail
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
-from OCP.Geom import Geom_BezierSurface, Geom_BSplineSurface, Geom_OffsetSurface, Geom_RectangularTrimmedSurface
-from OCP.TopoDS import TopoDS, TopoDS_Shape
+from OCP.TopoDS import TopoDS_Shape
 
 from ..constants import AREA_KEPT_SHARE, CONFUSION, SAME_DOMAIN_ANGLE
 from ..protocol.errors import KernelError, one_line
+from .pole_offset import on_pole_offset
 from .topology import boundary_length, indexed_map, subshapes, surface_props
 
 # MIDSURF_SERIAL_BOOLEANS=1 runs every boolean on one thread.
@@ -49,32 +48,6 @@ def split(
     return splitter
 
 
-def _osculating(shape: TopoDS_Shape) -> bool:
-    """Whether a face of `shape` lies on an offset of a B-spline or Bezier surface with a boundary collapsed to a
-    point (a pole: a freeform dome, a surface of revolution meeting its axis). OCCT evaluates such an offset
-    near the pole through an osculating surface kept in an NCollection_Sequence, whose lookups move a cursor
-    inside it: two threads evaluating the same surface corrupt it. A core dump of a crashed fuse had both
-    threads in Geom_OsculatingSurface::VOsculatingSurface (BOPAlgo_PaveFiller::PerformEF); a part with ten
-    such skins crashed in 4 of 5 parallel runs, each crash costing a whole serial rerun."""
-    for face in subshapes(shape, TopAbs_FACE):
-        surface = BRep_Tool.Surface_s(TopoDS.Face(face))
-        offset = False  # through any trimmed surfaces between the offset and its basis
-        while isinstance(surface, (Geom_RectangularTrimmedSurface, Geom_OffsetSurface)):
-            offset = offset or isinstance(surface, Geom_OffsetSurface)
-            surface = surface.BasisSurface()
-            if offset and isinstance(surface, (Geom_BSplineSurface, Geom_BezierSurface)) and _has_pole(surface):
-                return True
-    return False
-
-
-def _has_pole(surface: Geom_BSplineSurface | Geom_BezierSurface) -> bool:
-    """Whether a boundary row or column of the surface's poles is one point (within CONFUSION)."""
-    nu, nv = surface.NbUPoles(), surface.NbVPoles()
-    rows = [[surface.Pole(i, j) for j in range(1, nv + 1)] for i in (1, nu)]
-    columns = [[surface.Pole(i, j) for i in range(1, nu + 1)] for j in (1, nv)]
-    return any(all(p.Distance(line[0]) <= CONFUSION for p in line) for line in rows + columns)
-
-
 def general_fuse(faces: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
     """The faces split where they meet (each its own argument), with the builder kept for its history."""
     builder = BOPAlgo_Builder()
@@ -83,9 +56,9 @@ def general_fuse(faces: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
     builder.SetFuzzyValue(fuzzy)
     builder.SetNonDestructive(True)
     # ~1.7x faster on 2 cores; the result (and its face and edge order) is the same as a serial run. Faces on
-    # an offset of a freeform surface with a pole run serial (_osculating). Should the threads crash OCCT all
+    # an offset of a freeform surface with a pole run serial (pole_offset). Should the threads crash OCCT all
     # the same, midsurf runs the part again with SERIAL_VAR set.
-    builder.SetRunParallel(os.environ.get(SERIAL_VAR) != "1" and not any(map(_osculating, faces)))
+    builder.SetRunParallel(os.environ.get(SERIAL_VAR) != "1" and not any(map(on_pole_offset, faces)))
     builder.Perform()
     if builder.HasErrors():
         raise KernelError(f"BOPAlgo_Builder failed on {len(faces)} faces: {_alerts(builder)}")

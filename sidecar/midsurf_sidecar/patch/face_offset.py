@@ -1,4 +1,5 @@
-"""Offset of one face along its outward normal (BRepOffsetAPI_MakeOffsetShape.PerformBySimple).
+"""Offset of one face along its outward normal (BRepOffsetAPI_MakeOffsetShape.PerformBySimple); an offset of a
+freeform surface with a pole is approximated by a B-spline (geom.pole_offset.as_bspline).
 
 An offset that reaches the axis or centre of a cylinder, cone, sphere or torus gives a degenerate face
 that OCCT still reports as valid (KERNEL_NOTES), so that case is refused before OCCT is called.
@@ -18,6 +19,7 @@ from ..constants import COLLAPSE_RATIO
 from ..describe.surface_kind import describe_surface
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import interior_point
+from ..geom.pole_offset import as_bspline
 from ..geom.topology import diagonal, indexed_map
 from ..protocol.errors import OpError, one_line
 
@@ -45,7 +47,7 @@ def offset_face(face: TopoDS_Face, distance: float) -> TopoDS_Face:
     if faces is None or faces.Size() != 1:
         count = 0 if faces is None else faces.Size()
         raise OpError(f"offset by {distance:g} gave {count} faces instead of 1", "patch_failed")
-    return TopoDS.Face(faces.FindKey(1))
+    return as_bspline(TopoDS.Face(faces.FindKey(1)))
 
 
 def _refuse_collapse(face: TopoDS_Face, distance: float) -> None:
