@@ -3,7 +3,13 @@
 import math
 
 import pytest
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
+from OCP.BRep import BRep_Tool
+from OCP.BRepBuilderAPI import (
+    BRepBuilderAPI_MakeEdge,
+    BRepBuilderAPI_MakeFace,
+    BRepBuilderAPI_MakeWire,
+    BRepBuilderAPI_NurbsConvert,
+)
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as EdgeFaces
@@ -13,8 +19,9 @@ from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
 from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL
 from OCP.TopExp import TopExp
+from OCP.TopoDS import TopoDS
 
-from midsurf_sidecar.geom.topology import indexed_map
+from midsurf_sidecar.geom.topology import indexed_map, subshapes
 from midsurf_sidecar.write import shells
 from patch_shapes import horizontal, put_patches, rectangle, vertical
 
@@ -162,6 +169,22 @@ def test_a_closed_tube_is_split_at_its_seam_so_no_edge_is_used_by_one_face_insid
     per_edge = faces_per_edge(shells)
     assert per_edge.count(1) == 2 and all(n == 2 for n in per_edge if n != 1)
     assert sum(face_areas(shells)) == pytest.approx(2 * math.pi * 10 * 20 + math.pi * 100)
+
+
+def test_a_tube_closed_on_itself_as_a_non_periodic_b_spline_is_split_at_its_seam_too(client):
+    # The tube of the test above as some CAD writes it: a B-spline closed round but not periodic. Its seam bounds
+    # it twice all the same, and is shared once the face is split halfway round.
+    tube, lid = tube_and_lid()
+    converted = subshapes(BRepBuilderAPI_NurbsConvert(tube, True).Shape(), TopAbs_FACE)[0]
+    surface = BRep_Tool.Surface_s(TopoDS.Face(converted)).Copy()
+    surface.SetUNotPeriodic()
+    assert surface.IsUClosed() and not surface.IsUPeriodic()
+    closed = BRepBuilderAPI_MakeFace(surface, 1e-7).Face()
+    f = fused(client, closed, lid)
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[list(range(len(f["faces"])))])
+    assert ok["valid"] is True and len(ok["faces"]) == 3, "tube halves and lid"
+    per_edge = faces_per_edge(client.session.store.get(ok["handle"]))
+    assert per_edge.count(1) == 2 and all(n == 2 for n in per_edge if n != 1)
 
 
 def test_a_tube_cut_through_its_seam_has_no_seam_left(client):

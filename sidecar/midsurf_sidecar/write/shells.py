@@ -277,13 +277,20 @@ def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
     for shape in faces:
         face = TopoDS.Face(shape)
         surface = BRep_Tool.Surface_s(face)
-        if not (surface.IsUPeriodic() or surface.IsVPeriodic()):
+        # Closed, not only periodic: a B-spline closed on itself (some CAD writes tubes so, and a freeform dome's
+        # mid-patch is one) has a seam too.
+        u_closed = surface.IsUPeriodic() or surface.IsUClosed()
+        v_closed = surface.IsVPeriodic() or surface.IsVClosed()
+        if not (u_closed or v_closed):
             continue  # most faces: no need for the UV bounds
         u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+        su0, su1, sv0, sv1 = surface.Bounds()
+        u_turn = surface.UPeriod() if surface.IsUPeriodic() else su1 - su0
+        v_turn = surface.VPeriod() if surface.IsVPeriodic() else sv1 - sv0
         isolines = []
-        if surface.IsUPeriodic() and u1 - u0 >= surface.UPeriod() * (1 - FULL_TURN):
+        if u_closed and u1 - u0 >= u_turn * (1 - FULL_TURN):
             isolines.append(BRepBuilderAPI_MakeEdge(surface.UIso((u0 + u1) / 2), v0, v1))
-        if surface.IsVPeriodic() and v1 - v0 >= surface.VPeriod() * (1 - FULL_TURN):
+        if v_closed and v1 - v0 >= v_turn * (1 - FULL_TURN):
             isolines.append(BRepBuilderAPI_MakeEdge(surface.VIso((v0 + v1) / 2), u0, u1))
         for maker in isolines:
             if maker.IsDone():
