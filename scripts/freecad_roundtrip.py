@@ -22,8 +22,10 @@ import FreeCAD  # noqa: F401  (sets FreeCAD's module path up)
 import Part
 
 # Relative tolerance on the total area: STEP stores geometry to full precision, so only rounding in the report
-# (0.01 mm²) and the reader's tolerance fixes move it.
-AREA_TOLERANCE = 1e-4
+# (0.01 mm²), the reader's tolerance fixes and OCCT's area integration move it. The integration is the loosest:
+# on a rational B-spline face running into a pole (a dome's mid-patch, 28.999 mm radius, exact area 3461.82 mm²)
+# it gives 3462.46 in memory and 3462.01 on the faces read back (1.3e-4 apart).
+AREA_TOLERANCE = 3e-4
 
 
 def counts(shape):
