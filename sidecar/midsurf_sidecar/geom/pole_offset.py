@@ -41,7 +41,7 @@ def _has_pole(surface: Geom_BSplineSurface | Geom_BezierSurface) -> bool:
 def as_bspline(face: TopoDS_Face) -> TopoDS_Face:
     """`face`, when it lies on an offset of a freeform surface with a pole, on the B-spline approximation of that
     offset (ShapeCustom, which keeps the face's parameters: within 1e-7 of the offset at the same parameters on a
-    dome 30 across); `face` itself otherwise, or when the approximation fails BRepCheck. STEPControl_Reader drops
+    dome 60 across); `face` itself otherwise, or when the approximation fails BRepCheck. STEPControl_Reader drops
     such an offset face (a freeform dome's mid-surface was written and read back as nothing), and every later
     boolean with it had to run on one thread (on_pole_offset); its approximation has neither trouble."""
     if not on_pole_offset(face):
