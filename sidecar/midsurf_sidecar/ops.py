@@ -157,7 +157,10 @@ def fuse(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         or not all(isinstance(b, int) and not isinstance(b, bool) and b >= 0 for b in bodies)
     ):
         raise BadArgs(f"`bodies` must list a body number (integer >= 0) per patch, got {bodies!r}")
-    fused, described = patch_fuse.fuse([store.get(h) for h in handles], fuzzy, split_internal, bodies)
+    patches_fused = optional_bool(args, "patches_fused", False)
+    settled = set(index_list(args.get("settled", []), len(handles), "patch", "`patches`"))
+    shapes = [store.get(h) for h in handles]
+    fused, described = patch_fuse.fuse(shapes, fuzzy, split_internal, bodies, patches_fused, settled)
     return {"handle": store.put(fused), **described}
 
 

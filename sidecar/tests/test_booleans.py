@@ -6,11 +6,12 @@ from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_NurbsConvert
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
 from OCP.Geom import Geom_OffsetSurface
-from OCP.TopAbs import TopAbs_FACE, TopAbs_WIRE
+from OCP.gp import gp_Dir, gp_Pln, gp_Pnt
+from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_FACE, TopAbs_WIRE
 from OCP.TopoDS import TopoDS
 
 from midsurf_sidecar.geom import booleans
-from midsurf_sidecar.geom.booleans import check_area_kept, general_fuse, unify
+from midsurf_sidecar.geom.booleans import arguments, check_area_kept, general_fuse, unify
 from midsurf_sidecar.geom.pole_offset import on_pole_offset
 from midsurf_sidecar.geom.topology import subshapes, surface_props
 from midsurf_sidecar.protocol.errors import KernelError
@@ -143,3 +144,12 @@ def test_a_merge_that_breaks_a_face_is_dropped_for_the_faces_only_joined(monkeyp
     faces = [horizontal(), vertical(30)]
     joined = subshapes(unify(faces, 1e-6), TopAbs_FACE)
     assert len(joined) == 4 and all(surface_props(f).Mass() > 0 for f in joined)
+
+
+def test_fuse_arguments_are_a_face_alone_a_compound_for_a_group_and_loose_faces_below_two():
+    a, b, c = (BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, z), gp_Dir(0, 0, 1)), 0, 1, 0, 1).Face() for z in (0, 1, 2))
+    alone, group = arguments([[a], [b, c], []])
+    assert alone.IsSame(a)
+    assert group.ShapeType() == TopAbs_COMPOUND and len(subshapes(group, TopAbs_FACE)) == 2
+    loose = arguments([[a, b, c]])
+    assert len(loose) == 3 and all(x.IsSame(y) for x, y in zip(loose, (a, b, c)))

@@ -292,3 +292,24 @@ def test_a_foot_ending_inside_a_face_is_an_edge_inside_it(client):
     assert foot["inside"] == plate
     assert sorted(fused["faces"][i]["patch"] for i in foot["faces"]) == [0, 1]
     assert all("inside" not in e for e in fused["edges"] if e is not foot)
+
+
+def test_settled_patches_and_the_faces_of_a_fused_patch_are_not_intersected_with_each_other(client):
+    # A horizontal plate and a wall crossing it, never fused: as loose faces they split each other; as two
+    # settled patches, or as two faces of one patch marked as fused, they are taken as already split, so they
+    # stay whole (the caller's promise is what makes a stitching pass's fuse cheap). A patch that is neither
+    # still splits the plate. (A far plate makes a second argument where one alone would be refused.)
+    crossing, far = vertical(30.0), rectangle((0, 0, 90), (6, 0, 90), (6, 4, 90), (0, 4, 90))
+    plain = fuse(client, put_patches(client, horizontal(), crossing))
+    assert len(plain["faces"]) == 4
+    trusted = client.ok("fuse", patches=put_patches(client, horizontal(), crossing, far), fuzzy=1e-6, settled=[0, 1])
+    assert sorted(round(f["area"]) for f in trusted["faces"]) == [24, 1600, 2400]
+    one_patch = client.session.store.put(compound(horizontal(), crossing))
+    handles = [one_patch, client.session.store.put(compound(far))]
+    assert len(client.ok("fuse", patches=handles, fuzzy=1e-6)["faces"]) == 5
+    assert len(client.ok("fuse", patches=handles, fuzzy=1e-6, patches_fused=True)["faces"]) == 3
+    third = client.session.store.put(compound(vertical(45.0, z0=1.0)))
+    handles = put_patches(client, horizontal(), crossing) + [third]
+    mixed = client.ok("fuse", patches=handles, fuzzy=1e-6, settled=[0, 1])
+    check_consistent(mixed)
+    assert sorted((f["patch"], round(f["area"])) for f in mixed["faces"]) == [(0, 600), (0, 1800), (1, 1600), (2, 1560)]

@@ -268,3 +268,27 @@ def test_an_arc_past_the_period_grows_a_strip_the_fuse_keeps_valid():
     # The tube (1.5 pi x radius 2 x height 5) and its strips (the same turn, 1 high), none inverted.
     assert min(areas) > 0.0
     assert sum(areas) == pytest.approx(1.5 * math.pi * 2.0 * 6.0)
+
+
+@pytest.mark.parametrize("settled", [False, True])
+def test_a_stitching_pass_fuse_that_skips_settled_intersections_gives_the_same_joint(client, settled):
+    """The stitching's own fuse: the rib's kept pieces merged with its strip, then fused again with the base,
+    each patch one argument, and the base (untouched since the first fuse) settled or not. It gives what
+    intersecting every face with every other gives (the test above)."""
+    fused = fuse(client, put_patches(client, horizontal(), rib(2.0)))
+    edge, face = free_edge_of(fused, 1, 2.0)
+    strips = client.ok("extend_edges", handle=fused["handle"], strips=[{"edge": edge, "face": face, "lengths": [1.25] * 5}])
+    rib_faces = [i for i, f in enumerate(fused["faces"]) if f["patch"] == 1]
+    base_faces = [i for i, f in enumerate(fused["faces"]) if f["patch"] == 0]
+    base = client.ok("gather", parts=[{"handle": fused["handle"], "faces": base_faces}])
+    rib_part = {"handle": fused["handle"], "faces": rib_faces}
+    grown = client.ok("gather", parts=[rib_part, {"handle": strips["handle"], "faces": [0]}], unify=1e-6)
+    assert grown["faces"] == 1
+    again = client.ok(
+        "fuse", patches=[base["handle"], grown["handle"]], fuzzy=1e-6, split_internal=True,
+        patches_fused=True, settled=[0] if settled else [],
+    )
+    areas = sorted((f["patch"], round(f["area"], 6)) for f in again["faces"])
+    assert areas == [(0, 1200), (0, 1200), (1, 10), (1, 38 * 40 + 40)]
+    t_edges = [e for e in again["edges"] if len(e["faces"]) == 4]
+    assert len(t_edges) == 1 and t_edges[0]["length"] == pytest.approx(40.0)

@@ -19,6 +19,17 @@ use protocol::{EdgeRef, Probed, Request};
 
 use crate::model::shapes::{EdgeProbe, Fused, Handle, Shells};
 
+/// What a fuse is given, which decides how much it must intersect.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FuseKind {
+    /// Patches as made: every face of every patch is intersected with every other.
+    Patches,
+    /// A stitching pass: every patch comes out of a fuse (its faces already share their edges), so only
+    /// different patches are intersected; the `settled` ones (indices into the patches), taken unchanged from
+    /// one earlier fuse, not even with each other. Faces are also split along joints that end inside them.
+    Again { settled: Vec<usize> },
+}
+
 /// What the stages ask of the geometric kernel. The real one is the sidecar process ([`Sidecar`]); unit tests
 /// drive the stages with a fake that answers from a script. The ops whose replies the stages keep return the
 /// domain shapes of `model::shapes`, converted here from the wire types.
@@ -26,19 +37,18 @@ pub trait Kernel {
     /// Sends one request and decodes its `ok` payload into `R`.
     fn call<R: DeserializeOwned>(&mut self, request: &Request) -> Result<R, SidecarError>;
 
-    /// The patches behind `patches` fused into one shape, split where they cross (`split_internal`: also along
-    /// joints that end inside a face); `bodies` (the body of each patch) keeps the bodies apart: patches of
-    /// different bodies are fused separately and never share an edge.
-    fn fuse(
-        &mut self,
-        patches: Vec<Handle>,
-        bodies: &[usize],
-        fuzzy: f64,
-        split_internal: bool,
-    ) -> Result<Fused, SidecarError> {
+    /// The patches behind `patches` fused into one shape, split where they cross; `bodies` (the body of each
+    /// patch) keeps the bodies apart: patches of different bodies are fused separately and never share an edge.
+    fn fuse(&mut self, patches: Vec<Handle>, bodies: &[usize], fuzzy: f64, kind: FuseKind) -> Result<Fused, SidecarError> {
         let apart = bodies.iter().any(|&b| Some(&b) != bodies.first());
         let bodies = if apart { bodies.to_vec() } else { Vec::new() };
-        self.call::<protocol::Fused>(&Request::Fuse { patches, fuzzy, split_internal, bodies }).map(Fused::from)
+        let (again, settled) = match kind {
+            FuseKind::Patches => (false, Vec::new()),
+            FuseKind::Again { settled } => (true, settled),
+        };
+        let request =
+            Request::Fuse { patches, fuzzy, split_internal: again, patches_fused: again, bodies, settled };
+        self.call::<protocol::Fused>(&request).map(Fused::from)
     }
 
     /// One shell per set of faces of the fused shape `handle`, the faces of each set of `merge` made one face

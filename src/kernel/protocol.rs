@@ -132,15 +132,21 @@ pub enum Request {
         fill: Vec<usize>,
     },
     /// `split_internal`: split faces along joints that end inside them (for the final result only).
-    /// `bodies`: the body of each patch, when they are not all one (patches of different bodies are fused
-    /// apart).
+    /// `patches_fused`: each patch's faces already share their edges (it comes out of a fuse), so each patch is
+    /// one argument of the fuse, not each face. `bodies`: the body of each patch, when they are not all one
+    /// (patches of different bodies are fused apart). `settled`: the patches (indices into `patches`) taken
+    /// unchanged from one earlier fuse: together one argument, not intersected with each other again.
     Fuse {
         patches: Vec<u64>,
         fuzzy: f64,
         #[serde(skip_serializing_if = "std::ops::Not::not")]
         split_internal: bool,
+        #[serde(skip_serializing_if = "std::ops::Not::not")]
+        patches_fused: bool,
         #[serde(skip_serializing_if = "Vec::is_empty")]
         bodies: Vec<usize>,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        settled: Vec<usize>,
     },
     MakeShells {
         handle: u64,

@@ -89,12 +89,26 @@ fn requests_encode_as_exact_json() {
             r#"{"id":0,"op":"make_patch","args":{"handle":2,"faces":[7],"plane":{"origin":[50.0,0.0,0.0],"normal":[1.0,0.0,0.0]},"clip":{"partners":[[8,9]],"fuzzy":0.001,"narrow":3.0,"narrow_end":2.0,"thickness":2.0,"to_mid":-1.0,"wall_max":3.0},"reverse":true,"fill":[12,13]}}"#,
         ),
         (
-            Request::Fuse { patches: vec![3, 4], fuzzy: 0.001, split_internal: false, bodies: vec![] },
+            Request::Fuse {
+                patches: vec![3, 4],
+                fuzzy: 0.001,
+                split_internal: false,
+                patches_fused: false,
+                bodies: vec![],
+                settled: vec![],
+            },
             r#"{"id":0,"op":"fuse","args":{"patches":[3,4],"fuzzy":0.001}}"#,
         ),
         (
-            Request::Fuse { patches: vec![3, 4, 5], fuzzy: 0.001, split_internal: true, bodies: vec![0, 2, 0] },
-            r#"{"id":0,"op":"fuse","args":{"patches":[3,4,5],"fuzzy":0.001,"split_internal":true,"bodies":[0,2,0]}}"#,
+            Request::Fuse {
+                patches: vec![3, 4, 5],
+                fuzzy: 0.001,
+                split_internal: true,
+                patches_fused: true,
+                bodies: vec![0, 2, 0],
+                settled: vec![0, 2],
+            },
+            r#"{"id":0,"op":"fuse","args":{"patches":[3,4,5],"fuzzy":0.001,"split_internal":true,"patches_fused":true,"bodies":[0,2,0],"settled":[0,2]}}"#,
         ),
         (
             Request::MakeShells { handle: 9, shells: vec![vec![0, 1], vec![2]], merge: vec![vec![0, 1]], fuzzy: 0.5 },

@@ -10,7 +10,7 @@ use super::joint::{self, Verdict};
 use super::{kept_faces, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
 use crate::kernel::protocol::{CornerRequest, Extended, GatherPart, Gathered, Request, StripRequest};
-use crate::kernel::{Kernel, SidecarError};
+use crate::kernel::{FuseKind, Kernel, SidecarError};
 use crate::model::shapes::{EdgeProbe, Fused};
 use crate::trim::Branch;
 
@@ -185,10 +185,15 @@ pub(super) fn grow<K: Kernel>(
     }
     let mut order: Vec<usize> = Vec::new();
     let mut handles = Vec::new();
+    // A patch without strips keeps its pieces as `fused` made them: settled (`FuseKind::Again`).
+    let mut settled = Vec::new();
     for (k, (pieces, own)) in pieces_of.into_iter().zip(strips_of).enumerate() {
         let mut parts = Vec::new();
         // Only a patch with strips has faces to merge.
         let unify = (!own.is_empty()).then_some(fuzzy);
+        if own.is_empty() && !pieces.is_empty() {
+            settled.push(handles.len());
+        }
         if !pieces.is_empty() {
             parts.push(GatherPart { handle: fused.handle, faces: pieces });
         }
@@ -203,7 +208,7 @@ pub(super) fn grow<K: Kernel>(
         handles.push(gathered.handle);
     }
     let bodies: Vec<usize> = order.iter().map(|&k| patches[k].body).collect();
-    let mut again = kernel.fuse(handles, &bodies, fuzzy, true)?;
+    let mut again = kernel.fuse(handles, &bodies, fuzzy, FuseKind::Again { settled })?;
     for face in &mut again.faces {
         face.patch = order[face.patch];
     }

@@ -14,7 +14,7 @@ use std::collections::BTreeSet;
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::kernel::{Kernel, SidecarError};
+use crate::kernel::{FuseKind, Kernel, SidecarError};
 use crate::model::shapes::{Fused, FusedFace, Handle};
 use crate::model::union_find::{find, union};
 
@@ -34,7 +34,7 @@ pub fn fuse_and_trim<K: Kernel>(
     fuzzy: f64,
     limits: &[f64],
 ) -> Result<Trimmed, SidecarError> {
-    let fused = kernel.fuse(patches, bodies, fuzzy, false)?;
+    let fused = kernel.fuse(patches, bodies, fuzzy, FuseKind::Patches)?;
     let branches = find_branches(&fused, limits);
     let keep = keep_mask(fused.faces.len(), &branches);
     Ok(Trimmed { fused, keep, branches })

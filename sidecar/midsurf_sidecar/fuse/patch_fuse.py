@@ -14,7 +14,7 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_INTERNAL, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
 
-from ..geom.booleans import check_area_kept, general_fuse, split, within
+from ..geom.booleans import arguments, check_area_kept, general_fuse, split, within
 from ..geom.topology import IndexedShapeMap, ancestors, diagonal, indexed_map, subshapes
 from ..protocol.errors import KernelError
 from .fused_graph import describe
@@ -25,22 +25,27 @@ def fuse(
     fuzzy: float,
     split_internal: bool = False,
     bodies: list[int] | None = None,
+    patches_fused: bool = False,
+    settled: set[int] | None = None,
 ) -> tuple[TopoDS_Shape, dict[str, Any]]:
     """(F, the reply's `faces` and `edges`). `bodies` (one per patch, optional): patches of different bodies are
     fused apart and F holds the faces of every body's fuse, so that bodies that only touch never share an edge
-    (nor split each other where they overlap).
+    (nor split each other where they overlap). `patches_fused`: each patch comes out of a fuse (its faces share
+    their edges); `settled` (patch indices): patches taken unchanged from one earlier fuse (`_fuse_faces`).
     """
+    how = (patches_fused, settled or set())
     groups: dict[int, list[int]] = {}
     for k, body in enumerate(bodies if bodies is not None else [0] * len(patches)):
         groups.setdefault(body, []).append(k)
     if len(groups) <= 1:
-        fused, face_map, patch_of = _fuse_one(patches, fuzzy, split_internal)
+        fused, face_map, patch_of = _fuse_one(patches, fuzzy, split_internal, how)
         return fused, describe(fused, face_map, patch_of)
     fused, maker = TopoDS_Compound(), BRep_Builder()
     maker.MakeCompound(fused)
     owner: list[tuple[TopoDS_Shape, int]] = []
     for members in groups.values():
-        part, part_faces, part_patch = _fuse_one([patches[k] for k in members], fuzzy, split_internal)
+        part_how = (how[0], {i for i, k in enumerate(members) if k in how[1]})
+        part, part_faces, part_patch = _fuse_one([patches[k] for k in members], fuzzy, split_internal, part_how)
         owner.extend((part_faces.FindKey(i + 1), members[p]) for i, p in enumerate(part_patch))
         maker.Add(fused, part)
     face_map = indexed_map(fused, TopAbs_FACE)
@@ -53,18 +58,18 @@ def fuse(
 
 
 def _fuse_one(
-    patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool
+    patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool, how: tuple[bool, set[int]]
 ) -> tuple[TopoDS_Shape, IndexedShapeMap, list[int]]:
     """`fuse` of patches all of one body: (F, its faces, the patch of each).
 
     Every FACE of every patch is an argument of its own, not every patch: BOPAlgo_Builder does not
     intersect the sub-shapes of one argument with each other, so the separately offset faces of a patch
     (plane + bend + plane) would keep unshared edges, and a single argument is refused outright
-    (BOPAlgo_AlertTooFewArguments). `split_internal`: faces are split along the T-joints ending inside them
+    (BOPAlgo_AlertTooFewArguments). `how` says when patches are already fused (`_fuse_faces`). `split_internal`: faces are split along the T-joints ending inside them
     (_internal_edge_lines); costly, so only for the result of a stitching pass. A seam lists its face twice,
     as the two sides it joins: it is no free edge (closed faces are split at the seam only in make_shells).
     """
-    inputs, input_patch, builder = _fuse_faces(patches, fuzzy)
+    inputs, input_patch, builder = _fuse_faces(patches, fuzzy, how)
     if builder is None:
         # Nothing to intersect (and BOPAlgo refuses fewer than 2 arguments): F holds the face, if any.
         fused, maker = TopoDS_Compound(), BRep_Builder()
@@ -85,10 +90,16 @@ def _fuse_one(
 
 
 def _fuse_faces(
-    patches: list[TopoDS_Shape], fuzzy: float
+    patches: list[TopoDS_Shape], fuzzy: float, how: tuple[bool, set[int]]
 ) -> tuple[IndexedShapeMap, list[int], BOPAlgo_Builder | None]:
     """Every face of `patches` once, the index of the first patch holding each, and the builder that split them
-    where they meet (None for fewer than two faces); KernelError when OCCT fails or loses area."""
+    where they meet (None for fewer than two faces); KernelError when OCCT fails or loses area.
+
+    `how` = (patches_fused, settled). A stitching pass fuses patches that each come out of a fuse (their faces
+    share their edges): each is then one argument (`booleans.arguments`), and the settled ones, kept unchanged
+    from the pass's input, are one argument together. The pass then intersects what it changed (the patches
+    that grew strips) with the rest, not every face with its neighbours again: that was most of its time, and
+    OCCT failed a whole pass on a face it had itself made in the pass before."""
     inputs = IndexedShapeMap()
     input_patch: list[int] = []
     for k, patch in enumerate(patches):
@@ -100,7 +111,12 @@ def _fuse_faces(
     if inputs.Size() < 2:
         return inputs, input_patch, None
     faces = [inputs.FindKey(i + 1) for i in range(inputs.Size())]
-    builder = general_fuse(faces, fuzzy)
+    patches_fused, settled = how
+    groups: dict[Any, list[TopoDS_Shape]] = {}
+    for i, (face, patch) in enumerate(zip(faces, input_patch)):
+        key = "settled" if patch in settled else (patch if patches_fused else ("face", i))
+        groups.setdefault(key, []).append(face)
+    builder = general_fuse(arguments(list(groups.values())), fuzzy)
     # The patches' faces overlap only where fuzzy merges them: their pieces must cover them.
     check_area_kept(builder, faces, fuzzy)
     return inputs, input_patch, builder
