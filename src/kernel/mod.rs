@@ -39,15 +39,20 @@ pub trait Kernel {
 
     /// The patches behind `patches` fused into one shape, split where they cross; `bodies` (the body of each
     /// patch) keeps the bodies apart: patches of different bodies are fused separately and never share an edge.
-    fn fuse(&mut self, patches: Vec<Handle>, bodies: &[usize], fuzzy: f64, kind: FuseKind) -> Result<Fused, SidecarError> {
+    fn fuse(
+        &mut self,
+        patches: Vec<Handle>,
+        bodies: &[usize],
+        fuzzy: f64,
+        kind: FuseKind,
+    ) -> Result<Fused, SidecarError> {
         let apart = bodies.iter().any(|&b| Some(&b) != bodies.first());
         let bodies = if apart { bodies.to_vec() } else { Vec::new() };
         let (again, settled) = match kind {
             FuseKind::Patches => (false, Vec::new()),
             FuseKind::Again { settled } => (true, settled),
         };
-        let request =
-            Request::Fuse { patches, fuzzy, split_internal: again, patches_fused: again, bodies, settled };
+        let request = Request::Fuse { patches, fuzzy, split_internal: again, patches_fused: again, bodies, settled };
         self.call::<protocol::Fused>(&request).map(Fused::from)
     }
 

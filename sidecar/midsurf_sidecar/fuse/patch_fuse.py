@@ -65,8 +65,9 @@ def _fuse_one(
     Every FACE of every patch is an argument of its own, not every patch: BOPAlgo_Builder does not
     intersect the sub-shapes of one argument with each other, so the separately offset faces of a patch
     (plane + bend + plane) would keep unshared edges, and a single argument is refused outright
-    (BOPAlgo_AlertTooFewArguments). `how` says when patches are already fused (`_fuse_faces`). `split_internal`: faces are split along the T-joints ending inside them
-    (_internal_edge_lines); costly, so only for the result of a stitching pass. A seam lists its face twice,
+    (BOPAlgo_AlertTooFewArguments); `how` says when patches are already fused (`_fuse_faces`). `split_internal`:
+    faces are split along the T-joints ending inside them (_internal_edge_lines); costly, so only for the result
+    of a stitching pass. A seam lists its face twice,
     as the two sides it joins: it is no free edge (closed faces are split at the seam only in make_shells).
     """
     inputs, input_patch, builder = _fuse_faces(patches, fuzzy, how)
@@ -98,8 +99,7 @@ def _fuse_faces(
     `how` = (patches_fused, settled). A stitching pass fuses patches that each come out of a fuse (their faces
     share their edges): each is then one argument (`booleans.arguments`), and the settled ones, kept unchanged
     from the pass's input, are one argument together. The pass then intersects what it changed (the patches
-    that grew strips) with the rest, not every face with its neighbours again: that was most of its time, and
-    OCCT failed a whole pass on a face it had itself made in the pass before."""
+    that grew strips) with the rest, not every face with its neighbours again, which was most of its time."""
     inputs = IndexedShapeMap()
     input_patch: list[int] = []
     for k, patch in enumerate(patches):

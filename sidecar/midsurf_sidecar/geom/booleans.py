@@ -48,15 +48,15 @@ def split(
     return splitter
 
 
-def general_fuse(arguments: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
-    """The arguments split where they meet, with the builder kept for its history. An argument is a face, or a
-    compound of faces already split against each other and sharing their edges: BOPAlgo_Builder does not
+def general_fuse(shapes: list[TopoDS_Shape], fuzzy: float) -> BOPAlgo_Builder:
+    """The shapes split where they meet, with the builder kept for its history. Each is one argument: a face, or
+    a compound of faces already split against each other and sharing their edges, since BOPAlgo_Builder does not
     intersect the sub-shapes of one argument with each other (see `arguments`)."""
     builder = BOPAlgo_Builder()
     faces = []
-    for argument in arguments:
-        builder.AddArgument(argument)
-        faces.extend(subshapes(argument, TopAbs_FACE))
+    for shape in shapes:
+        builder.AddArgument(shape)
+        faces.extend(subshapes(shape, TopAbs_FACE))
     builder.SetFuzzyValue(fuzzy)
     builder.SetNonDestructive(True)
     # ~1.7x faster on 2 cores; the result (and its face and edge order) is the same as a serial run. Faces on
