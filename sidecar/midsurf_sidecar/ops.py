@@ -7,6 +7,7 @@ from typing import Any
 
 import OCP
 from OCP.BRep import BRep_Builder
+from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 
@@ -161,6 +162,10 @@ def fuse(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     settled = set(index_list(args.get("settled", []), len(handles), "patch", "`patches`"))
     shapes = [store.get(h) for h in handles]
     fused, described = patch_fuse.fuse(shapes, fuzzy, split_internal, bodies, patches_fused, settled)
+    if split_internal:
+        # A stitching pass's result: the faces that fail BRepCheck, which the write would leave out.
+        face_map = indexed_map(fused, TopAbs_FACE)
+        described["invalid"] = [i for i in range(face_map.Size()) if not BRepCheck_Analyzer(face_map.FindKey(i + 1)).IsValid()]
     return {"handle": store.put(fused), **described}
 
 

@@ -10,6 +10,7 @@ impl From<wire::Fused> for Fused {
             handle: w.handle,
             faces: w.faces.into_iter().map(FusedFace::from).collect(),
             edges: w.edges.into_iter().map(FusedEdge::from).collect(),
+            invalid: w.invalid,
         }
     }
 }

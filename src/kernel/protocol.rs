@@ -344,6 +344,8 @@ pub struct Fused {
     pub handle: u64,
     pub faces: Vec<FusedFace>,
     pub edges: Vec<FusedEdge>,
+    #[serde(default)]
+    pub invalid: Vec<usize>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]

@@ -20,6 +20,9 @@ pub struct Fused {
     pub handle: Handle,
     pub faces: Vec<FusedFace>,
     pub edges: Vec<FusedEdge>,
+    /// The faces (indices into `faces`) that fail the kernel's check (BRepCheck), as found by a stitching
+    /// pass's fuse (`FuseKind::Again`); empty otherwise.
+    pub invalid: Vec<usize>,
 }
 
 #[derive(Debug, Clone, PartialEq)]

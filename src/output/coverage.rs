@@ -151,7 +151,7 @@ mod tests {
             normal: DVec3::Z,
             edges: vec![],
         };
-        let fused = Fused { handle: 2, faces: vec![face], edges: vec![] };
+        let fused = Fused { handle: 2, faces: vec![face], edges: vec![], invalid: vec![] };
         let shells = Shells {
             handle: 3,
             count: 1,

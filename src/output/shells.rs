@@ -237,7 +237,7 @@ mod tests {
             normal: DVec3::Z,
             edges: vec![],
         };
-        Fused { handle: 1, faces: faces.iter().map(face).collect(), edges: vec![] }
+        Fused { handle: 1, faces: faces.iter().map(face).collect(), edges: vec![], invalid: vec![] }
     }
 
     fn shells(faces: Vec<usize>, valid: bool, invalid: Vec<usize>) -> Shells {

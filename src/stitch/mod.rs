@@ -212,11 +212,23 @@ fn later_pass<K: Kernel>(
     peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
     let (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
     let (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
-    if counted.open_length > state.counted.open_length {
+    if counted.open_length + broken_length(&fused, &keep)
+        > state.counted.open_length + broken_length(&state.fused, &state.keep)
+    {
         *tally = before;
         return Ok(state);
     }
     Ok(State { fused, keep, branches, free, probes, counted, open_patches })
+}
+
+/// The length of the edges of the kept faces that fail the kernel's check: such a face is left out when the file
+/// is written (`output::shells::write_checked`), which opens its edges, so a pass that makes it opens them.
+fn broken_length(fused: &Fused, keep: &[bool]) -> f64 {
+    let broken: BTreeSet<usize> = fused.invalid.iter().copied().filter(|&f| keep[f]).collect();
+    if broken.is_empty() {
+        return 0.0;
+    }
+    fused.edges.iter().filter(|e| e.faces.iter().any(|f| broken.contains(f))).map(|e| e.length).sum()
 }
 
 /// One pass of stitching, growing curved edges to the rim too; when the kernel fails it (a fuse that gives up),

@@ -209,7 +209,7 @@ mod tests {
             edge(1.0, vec![4]),
         ];
         let mesh = SolidMesh::new(&synthetic::cuboid(DVec3::ZERO, DVec3::new(100.0, 60.0, 2.0))).unwrap();
-        (Fused { handle: 0, faces, edges }, vec![mesh])
+        (Fused { handle: 0, faces, edges, invalid: vec![] }, vec![mesh])
     }
 
     #[test]

@@ -369,3 +369,27 @@ fn a_later_pass_that_leaves_more_open_than_it_found_is_undone() {
     assert_eq!(stitched.joints, [report(vec![1], "rim", 1, 10.0)], "the rims pass's strip is not counted");
     assert_eq!((stitched.free.open_edges, stitched.free.open_length), (1, 10.0));
 }
+
+/// The plate above through the rims pass, whose result (handle 41) holds the same open edge as before, its face
+/// `invalid` or not; what stands.
+fn rims_result_with_face_invalid(invalid: bool) -> Stitched {
+    let (a, b) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
+    let fused = fused(vec![face(0, DVec3::Z)], vec![edge(a, b, &[0])]);
+    let edge_probe = json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[])]});
+    let broken: Vec<usize> = if invalid { vec![0] } else { vec![] };
+    let mut replies = joints_then_rims_replies(a, b, &edge_probe);
+    replies.extend([
+        json!({"handle": 41, "faces": [face(0, DVec3::Z)], "edges": [edge(a, b, &[0])], "invalid": broken}),
+        edge_probe.clone(),
+        edge_probe,
+    ]);
+    run(&fused, &[info(2.0, (1, 0))], (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies).0
+}
+
+#[test]
+fn a_later_pass_that_breaks_a_face_counts_its_edges_as_open_and_is_undone() {
+    // The write leaves a face that fails the kernel's check out, which opens its edges: a pass that makes one
+    // opens them, though the free edges it leaves are no longer than before. Without the broken face it stands.
+    assert_eq!(rims_result_with_face_invalid(true).fused.handle, 40, "the joints pass's result stands");
+    assert_eq!(rims_result_with_face_invalid(false).fused.handle, 41, "the rims pass's result stands");
+}

@@ -42,6 +42,7 @@ fn l_corner() -> Fused {
     }
     Fused {
         handle: 1,
+        invalid: vec![],
         faces: vec![
             face(0, 2360.0, vec![0, 1]),
             face(0, 40.0, vec![0, 2]),
@@ -63,6 +64,7 @@ fn tee() -> Fused {
     };
     Fused {
         handle: 1,
+        invalid: vec![],
         faces: vec![
             at(face(0, 5000.0, vec![0, 2]), 0.0),
             at(face(0, 600.0, vec![0]), 100.0),
@@ -205,6 +207,7 @@ fn merge_sets_join_pieces_of_one_patch_across_edges_only_they_share() {
     // Patch 1: pieces 3 and 4 side by side, and 4 is dropped.
     let fused = Fused {
         handle: 1,
+        invalid: vec![],
         faces: vec![
             face(0, 1.0, vec![0]),
             face(0, 1.0, vec![0, 1]),
@@ -229,6 +232,7 @@ fn merge_sets_keep_apart_pieces_that_also_share_a_t_joints_edge() {
     // ending on their common boundary): merged, the T's edge would lie inside the face.
     let fused = Fused {
         handle: 1,
+        invalid: vec![],
         faces: vec![face(0, 1.0, vec![0, 1]), face(0, 1.0, vec![0, 1]), face(1, 1.0, vec![1])],
         edges: vec![edge(vec![0, 1], v(0.0), v(1.0)), edge(vec![0, 1, 2], v(1.0), v(2.0))],
     };
@@ -258,6 +262,7 @@ fn ribbed_floor_edge() -> Fused {
     ];
     Fused {
         handle: 1,
+        invalid: vec![],
         faces: vec![
             face(0, 300.0, vec![0, 1, 2]),
             face(0, 200.0, vec![0, 3, 5, 6]),
