@@ -7,7 +7,6 @@ from typing import Any
 
 import OCP
 from OCP.BRep import BRep_Builder
-from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 
@@ -15,7 +14,7 @@ from .constants import CONFUSION, RIM_SHARE
 from .describe import face_graph, face_mesh
 from .fuse import patch_fuse
 from .geom import booleans
-from .geom.topology import indexed_map, surface_props, volume
+from .geom.topology import indexed_map, invalid_faces, surface_props, volume
 from .joints import edge_probe, edge_strip
 from .load import step_reader
 from .patch import mid_patch
@@ -164,8 +163,7 @@ def fuse(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
     fused, described = patch_fuse.fuse(shapes, fuzzy, split_internal, bodies, patches_fused, settled)
     if split_internal:
         # A stitching pass's result: the faces that fail BRepCheck, which the write would leave out.
-        face_map = indexed_map(fused, TopAbs_FACE)
-        described["invalid"] = [i for i in range(face_map.Size()) if not BRepCheck_Analyzer(face_map.FindKey(i + 1)).IsValid()]
+        described["invalid"] = invalid_faces(fused, indexed_map(fused, TopAbs_FACE)) or []
     return {"handle": store.put(fused), **described}
 
 

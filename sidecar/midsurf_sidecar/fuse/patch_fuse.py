@@ -67,8 +67,8 @@ def _fuse_one(
     (plane + bend + plane) would keep unshared edges, and a single argument is refused outright
     (BOPAlgo_AlertTooFewArguments); `how` says when patches are already fused (`_fuse_faces`). `split_internal`:
     faces are split along the T-joints ending inside them (_internal_edge_lines); costly, so only for the result
-    of a stitching pass. A seam lists its face twice,
-    as the two sides it joins: it is no free edge (closed faces are split at the seam only in make_shells).
+    of a stitching pass. A seam lists its face twice, as the two sides it joins: it is no free edge (closed faces
+    are split at the seam only in make_shells).
     """
     inputs, input_patch, builder = _fuse_faces(patches, fuzzy, how)
     if builder is None:

@@ -6,6 +6,7 @@ from OCP.Bnd import Bnd_Box
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBndLib import BRepBndLib
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepTools import BRepTools
@@ -39,6 +40,14 @@ def indexed_map(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum) -> IndexedShapeMap:
     shape_map = IndexedShapeMap()
     TopExp.MapShapes_s(shape, kind, shape_map)
     return shape_map
+
+
+def invalid_faces(shape: TopoDS_Shape, faces: IndexedShapeMap) -> list[int] | None:
+    """None when `shape` passes BRepCheck, else the ids of its `faces` (its face map) that fail it, checked face
+    by face only then, so a sound shape costs one check (the list may be empty: the whole can fail alone)."""
+    if BRepCheck_Analyzer(shape).IsValid():
+        return None
+    return [j for j in range(faces.Size()) if not BRepCheck_Analyzer(faces.FindKey(j + 1)).IsValid()]
 
 
 def ancestors(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum, owner: TopAbs_ShapeEnum) -> AncestorMap:

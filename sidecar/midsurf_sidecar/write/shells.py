@@ -19,7 +19,7 @@ from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
-from ..geom.topology import IndexedShapeMap, ancestors, bounds_face, indexed_map, subshapes
+from ..geom.topology import IndexedShapeMap, ancestors, bounds_face, indexed_map, invalid_faces, subshapes
 from ..geom.uv_lines import line_within
 from ..protocol.errors import KernelError
 
@@ -58,9 +58,9 @@ def make_shells(
             source[own.FindIndex(face) - 1] = face_id
     if -1 in source:
         raise KernelError("a face of the shells is not a face of the fused shape")
-    valid = BRepCheck_Analyzer(compound).IsValid()
-    # Which faces fail, so the report can name their patches (checked only when the whole fails: one pass).
-    invalid = [] if valid else [j for j in range(own.Size()) if not BRepCheck_Analyzer(own.FindKey(j + 1)).IsValid()]
+    # Which faces fail, so the report can name their patches.
+    checked = invalid_faces(compound, own)
+    valid, invalid = checked is None, checked or []
     return compound, {
         "shells": compound.NbChildren(),
         "components": components,
