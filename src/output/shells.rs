@@ -35,11 +35,29 @@ fn make_shells_apart<K: Kernel>(
     fuzzy: f64,
     apart: &BTreeSet<usize>,
 ) -> Result<Assembled, SidecarError> {
-    let sets = connected_sets(&stitched.fused, &stitched.keep);
-    let merge = merged(stitched, apart);
+    let sets = canonical(&stitched.fused, connected_sets(&stitched.fused, &stitched.keep), fuzzy);
+    let merge = canonical(&stitched.fused, merged(stitched, apart), fuzzy);
     let shells = kernel.make_shells(stitched.fused.handle, sets, merge, fuzzy)?;
     let warning = invalid_output_warning(&shells, &stitched.fused);
     Ok(Assembled { shells, warning })
+}
+
+/// `sets` of pieces in an order the geometry alone decides: each set's pieces by patch, then by centroid and
+/// area on a grid of `grid` (mm), the sets by their first piece. The fuse lists its pieces in an order of its
+/// own, which moves when the same faces are fused in another order or grouping; the shells are written in the
+/// order given (a merge set's first piece stands for the merged face), so the same mid-surface gives the same
+/// file. Pieces on the same cell of the grid keep their order.
+fn canonical(fused: &Fused, mut sets: Vec<Vec<usize>>, grid: f64) -> Vec<Vec<usize>> {
+    let cell = |x: f64| if grid > 0.0 { (x / grid).round() as i64 } else { 0 };
+    let key = |p: usize| {
+        let f = &fused.faces[p];
+        (f.patch, cell(f.centroid.x), cell(f.centroid.y), cell(f.centroid.z), cell(f.area))
+    };
+    for set in &mut sets {
+        set.sort_by_key(|&p| key(p));
+    }
+    sets.sort_by_key(|set| set.first().map(|&p| key(p)));
+    sets
 }
 
 /// The solids that are not thin-walled, to be written as they are beside the mid-surface (--keep-solids).
@@ -363,6 +381,58 @@ mod tests {
         assert_eq!(assembled.shells.faces, vec![0, 1, 2]);
         assert_eq!(last.valid, Some(true));
         assert!(warning.is_none());
+    }
+
+    /// The shells and merge sets `make_shells` asks of the kernel for `stitched`, each piece given as the
+    /// (patch, centroid x) it is.
+    fn asked_shells(stitched: &Outcome) -> (Vec<Vec<(usize, f64)>>, Vec<Vec<(usize, f64)>>) {
+        let mut kernel = FakeKernel::new(vec![shells_reply(&stitched.keep)]);
+        make_shells(&mut kernel, stitched, 1e-3).unwrap();
+        let Some(Request::MakeShells { shells, merge, .. }) = kernel.requests.last() else { panic!("no make_shells") };
+        let named = |sets: &Vec<Vec<usize>>| -> Vec<Vec<(usize, f64)>> {
+            let face = |p: usize| (stitched.fused.faces[p].patch, stitched.fused.faces[p].centroid.x);
+            sets.iter().map(|set| set.iter().map(|&p| face(p)).collect()).collect()
+        };
+        (named(shells), named(merge))
+    }
+
+    #[test]
+    fn shells_are_asked_in_an_order_the_geometry_decides_not_the_fuse() {
+        // Pieces (patch, centroid x): patch 1 in two pieces sharing an edge (a merge set), patch 0 in two pieces
+        // sharing an edge with patch 1's first, and a lone piece of patch 2. The fuse may list them in any order.
+        let pieces = [(1, 3.0), (0, 5.0), (2, 9.0), (1, 1.0), (0, 2.0)];
+        let edges = [vec![0, 3], vec![3, 1], vec![1, 4]];
+        let stitched_in = |order: &[usize]| {
+            let mut stitched = outcome(pieces.len());
+            let at = |piece: usize| order.iter().position(|&p| p == piece).unwrap();
+            for (k, &piece) in order.iter().enumerate() {
+                let face = &mut stitched.fused.faces[k];
+                (face.patch, face.centroid) = (pieces[piece].0, DVec3::new(pieces[piece].1, 0.0, 0.0));
+            }
+            stitched.fused.edges = edges
+                .iter()
+                .map(|e| FusedEdge {
+                    length: 1.0,
+                    faces: e.iter().map(|&p| at(p)).collect(),
+                    points: vec![],
+                    inside: vec![],
+                })
+                .collect();
+            for (j, edge) in stitched.fused.edges.iter().enumerate() {
+                for &f in &edge.faces {
+                    stitched.fused.faces[f].edges.push(j);
+                }
+            }
+            stitched
+        };
+        let listed = asked_shells(&stitched_in(&[0, 1, 2, 3, 4]));
+        assert_eq!(
+            listed.0,
+            vec![vec![(0, 2.0), (0, 5.0), (1, 1.0), (1, 3.0)], vec![(2, 9.0)]],
+            "pieces by patch then position, shells by their first piece"
+        );
+        assert_eq!(listed.1, vec![vec![(0, 2.0), (0, 5.0)], vec![(1, 1.0), (1, 3.0)]]);
+        assert_eq!(asked_shells(&stitched_in(&[4, 2, 3, 0, 1])), listed);
     }
 
     #[test]
