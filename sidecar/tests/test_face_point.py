@@ -38,3 +38,38 @@ def test_area_samples_are_bounded_and_even():
     assert len(samples) <= MAX_AREA_SAMPLES
     assert len({round(a, 9) for a, _, _ in samples}) == 1
     assert sum(a for a, _, _ in samples) == pytest.approx(4000.0)
+
+
+def test_a_sliver_with_no_point_found_inside_is_measured_on_its_longest_edge():
+    # A 10 x 1e-5 strip: the classifier finds no point inside it (its UV centre lies within the face's
+    # tolerance of its edges, every step beside an edge is wider than it). A fuse's reply measures it at the
+    # middle of its longest edge rather than failing; patch making still refuses it.
+    from midsurf_sidecar.geom.face_measure import measure
+    from midsurf_sidecar.protocol.errors import KernelError
+
+    sliver = rectangle(10.0, 1e-5)
+    with pytest.raises(KernelError, match="no point inside the face"):
+        measure(sliver)
+    measured = measure(sliver, sliver_ok=True)
+    assert measured["point"][0] == pytest.approx(5.0)
+    assert measured["point"][1] in (pytest.approx(0.0), pytest.approx(1e-5))
+    assert measured["normal"] == pytest.approx([0.0, 0.0, 1.0])
+    assert measured["area"] == pytest.approx(1e-4)
+
+
+def test_a_fuse_reply_describes_a_sliver_face():
+    from OCP.BRep import BRep_Builder
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopoDS import TopoDS_Compound
+
+    from midsurf_sidecar.fuse.fused_graph import describe
+    from midsurf_sidecar.geom.topology import indexed_map
+
+    builder, compound = BRep_Builder(), TopoDS_Compound()
+    builder.MakeCompound(compound)
+    builder.Add(compound, rectangle(10.0, 2.0))
+    builder.Add(compound, rectangle(10.0, 1e-5))
+    faces = indexed_map(compound, TopAbs_FACE)
+    reply = describe(compound, faces, [0, 1])
+    assert [f["patch"] for f in reply["faces"]] == [0, 1]
+    assert reply["faces"][1]["point"][0] == pytest.approx(5.0)

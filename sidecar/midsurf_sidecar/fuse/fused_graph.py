@@ -33,7 +33,10 @@ def describe(fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int]
             if e in inside:
                 edge_inside[e].append(i)
         try:
-            faces.append({"patch": patch_of[i], **measure(face), "edges": edges})
+            # A sliver of a fuse (two curved strips crossing at a grazing angle) may hold no point a classifier
+            # finds inside: it is measured on its edge rather than failing the whole fuse, whose pass the
+            # stitching keeps only when it leaves no more open length than it found.
+            faces.append({"patch": patch_of[i], **measure(face, sliver_ok=True), "edges": edges})
         except Exception as exc:
             raise KernelError(f"fused face {i} (patch {patch_of[i]}): {one_line(exc)}") from exc
     edges_json = []

@@ -5,7 +5,8 @@ import math
 from collections.abc import Iterator
 
 from OCP.BRep import BRep_Tool
-from OCP.BRepAdaptor import BRepAdaptor_Curve2d, BRepAdaptor_Surface
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
+from OCP.GCPnts import GCPnts_AbscissaPoint
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.BRepClass import BRepClass_FaceClassifier
 from OCP.BRepTools import BRepTools
@@ -35,6 +36,20 @@ def interior_point(normals: OutwardNormals, diagonal: float) -> tuple[Vec, Vec]:
     raise KernelError(
         "no point inside the face: not the UV centre, nor a mesh triangle centre, nor a point beside an edge"
     )
+
+
+def edge_point(normals: OutwardNormals) -> tuple[Vec, Vec]:
+    """(point, outward normal) at the middle of the longest of the face's edges where the normal is defined (on
+    a sliver, the middle of its length): for a sliver thinner than every step `interior_point` tries beside its
+    edges, whose inside no classifier finds."""
+    face = normals.face
+    for edge in sorted(curve_edges(face), key=lambda e: -GCPnts_AbscissaPoint.Length_s(BRepAdaptor_Curve(e))):
+        curve = BRepAdaptor_Curve2d(edge, face)
+        uv = curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter()))
+        sample = normals.at(uv.X(), uv.Y())
+        if sample is not None:
+            return sample
+    raise KernelError("no point on the face: no edge with a defined normal at its middle")
 
 
 def _candidates(face: TopoDS_Face, diagonal: float) -> Iterator[tuple[float, float]]:
