@@ -343,6 +343,20 @@ def plate_step() -> Fixture:
     return Fixture(single_solid(part), 15000, 8)
 
 
+def plate_pockets() -> Fixture:
+    """flat_plate with two pockets 1 deep in its underside (a moulding's marking or a lightening recess): a
+    rectangle 10 x 20 at (20, 20) and an L (20 x 6 at (50, 20), with a leg 6 x 14 above its left end). Over a
+    pocket the wall is 1 thick, so its mid-surface steps up to z = 1.5 and meets the plate's (z = 1) through ramps
+    along the pocket's sides; at each convex corner of a pocket two ramps meet and leave a notch between their
+    feet, at the L's reflex corner they overlap.
+    Faces: 18 (the plate's 6; the rectangle's floor and 4 walls; the L's floor and 6 walls).
+    Volume: 12000 - 10 * 20 * 1 - (20 * 6 + 6 * 14) * 1.
+    """
+    pockets = box(20, 20, 0, 10, 20, 1) + box(50, 20, 0, 20, 6, 1) + box(50, 26, 0, 6, 14, 1)
+    part = box(0, 0, 0, 100, 60, 2) - pockets
+    return Fixture(single_solid(part), 12000 - 200 - 204, 18)
+
+
 def cylinders_meet(r: float, big: float) -> float:
     """Volume common to a cylinder of radius `r` on a vertical axis, from the axis of a horizontal one of radius
     `big` >= r (crossing it at right angles) upwards, and that horizontal one: the integral over the disc of
@@ -919,6 +933,7 @@ PARTS: list[Callable[[], Fixture]] = [
     t_rib_chamfers,
     t_rib_rounded,
     plate_step,
+    plate_pockets,
     pipe_tee,
     cover_pin,
     plate_hairline_groove,

@@ -219,6 +219,60 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     out
 }
 
+/// Where two bridges owned by one patch meet at a corner of its edges (a pocket's or a pad's corner, each side
+/// bridged by a ramp into the surrounding wall), their far sides stop short of each other and leave a notch: v
+/// (the corner they share), a and b (their far ends there) and c, where their far lines meet. The quad v, a, c, b
+/// fills it, oriented along the owner's normal (owner edge, quad, normal). Only where the far lines run apart
+/// from the corner (a convex corner of the owner: at a reflex one the bridges overlap instead), meeting within
+/// the owner's reach; not between arcs (a round corner has no notch). `same_point`: two points closer than this
+/// are one.
+pub fn bridge_corners(bridges: &[StepBridge], edges: &[LooseEdge], same_point: f64) -> Vec<(usize, [DVec3; 4], DVec3)> {
+    // (owner-side corner, far-side end, direction along the far side out past that end) at both ends.
+    let ends = |b: &StepBridge| {
+        let along = (b.quad[2] - b.quad[1]).normalize_or_zero();
+        [(b.quad[0], b.quad[1], -along), (b.quad[3], b.quad[2], along)]
+    };
+    let mut out = Vec::new();
+    for (i, x) in bridges.iter().enumerate() {
+        for y in &bridges[i + 1..] {
+            if x.axis.is_some() || y.axis.is_some() || edges[x.owner].patch != edges[y.owner].patch {
+                continue;
+            }
+            let reach = edges[x.owner].reach;
+            for (v, a, ua) in ends(x) {
+                for (w, b, ub) in ends(y) {
+                    if v.distance(w) > same_point || a.distance(b) <= same_point {
+                        continue;
+                    }
+                    let Some(c) = meeting((a, ua), (b, ub), same_point) else { continue };
+                    let apart = (c - a).dot(ua) > same_point && (c - b).dot(ub) > same_point;
+                    if apart && c.distance(a) <= reach && c.distance(b) <= reach {
+                        out.push((x.owner, [v, a, c, b], edges[x.owner].normal));
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Where the lines a + s u and b + t v (unit directions) meet, within `tolerance`; None when they are parallel
+/// or pass each other farther apart.
+fn meeting((a, u): (DVec3, DVec3), (b, v): (DVec3, DVec3), tolerance: f64) -> Option<DVec3> {
+    let w = a - b;
+    let (p, q, r) = (u.dot(v), u.dot(w), v.dot(w));
+    let den = 1.0 - p * p;
+    if den <= PARALLEL_LINES {
+        return None;
+    }
+    let s = (p * r - q) / den;
+    let (on_a, on_b) = (a + u * s, b + v * (r + p * s));
+    (on_a.distance(on_b) <= tolerance).then(|| (on_a + on_b) * 0.5)
+}
+
+/// 1 - cos^2 of the angle between two lines under which they are parallel (about 0.06 degrees).
+const PARALLEL_LINES: f64 = 1e-6;
+
 /// The bridge between straight edges `thin` and `thick` (indices and courses), with the gap between their lines;
 /// `first` is the pair's first edge, which owns a flat or upright bridge.
 fn line_bridge(

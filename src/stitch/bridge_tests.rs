@@ -199,3 +199,54 @@ fn a_gap_in_a_tubes_own_surface_is_closed_by_a_band_of_its_cylinder() {
     let flat = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(0, 2.0, 52.0, 1.0, (60.0, 0.0), -DVec3::X)];
     assert!(ruling_gaps(&flat).is_empty());
 }
+
+/// A straight open edge of patch `patch` from `from` to `to` (5 samples), facing +z.
+fn line(patch: usize, thickness: f64, from: DVec3, to: DVec3, outward: DVec3) -> LooseEdge {
+    let points = (0..5).map(|k| from + (to - from) * k as f64 / 4.0).collect();
+    open_edge(patch, thickness, points, DVec3::Z, outward)
+}
+
+#[test]
+fn ramps_meeting_at_a_pockets_convex_corner_get_the_notch_between_their_feet_filled() {
+    // A pocket in a plate's underside: its wall (t=1, patch 1) at z=1.5 over x, y >= 20, the plate's (t=2,
+    // patch 0) at z=1 round it; the two sides through the corner (20, 20) are ramps into the plate.
+    let (v, z_thin, z_thick) = (DVec3::new(20.0, 20.0, 0.0), 1.5, 1.0);
+    let at = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let edges = [
+        line(1, 1.0, at(20.0, 20.0, z_thin), at(20.0, 40.0, z_thin), -DVec3::X),
+        line(1, 1.0, at(20.0, 20.0, z_thin), at(30.0, 20.0, z_thin), -DVec3::Y),
+        line(0, 2.0, at(20.0, 20.0, z_thick), at(20.0, 40.0, z_thick), DVec3::X),
+        line(0, 2.0, at(20.0, 20.0, z_thick), at(30.0, 20.0, z_thick), DVec3::Y),
+    ];
+    let bridges = step_bridges(&edges);
+    assert_eq!(bridges.len(), 2, "{bridges:?}");
+    let corners = bridge_corners(&bridges, &edges, 1e-9);
+    assert_eq!(corners.len(), 1, "{corners:?}");
+    let (owner, quad, normal) = corners[0];
+    assert_eq!(edges[owner].patch, 1, "the pocket's wall owns the corner, as its ramps");
+    assert_eq!(normal, DVec3::Z);
+    // v, the ramps' feet half the thin wall (0.5) out into the plate, and where their lines meet.
+    let expected = [v + DVec3::Z * z_thin, at(19.5, 20.0, z_thick), at(19.5, 19.5, z_thick), at(20.0, 19.5, z_thick)];
+    let same = |p: DVec3, q: DVec3| p.distance(q) < 1e-9;
+    let flipped = [expected[0], expected[3], expected[2], expected[1]];
+    assert!(
+        quad.iter().zip(expected).all(|(&p, q)| same(p, q)) || quad.iter().zip(flipped).all(|(&p, q)| same(p, q)),
+        "{quad:?}"
+    );
+}
+
+#[test]
+fn ramps_meeting_at_a_pockets_reflex_corner_overlap_and_get_no_fill() {
+    // The inner corner (56, 26) of an L-shaped pocket: the pocket lies at x < 56 and y < 26 of it; the ramps'
+    // feet lines cross at (56.5, 26.5), behind both their ends.
+    let at = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let edges = [
+        line(1, 1.0, at(56.0, 26.0, 1.5), at(56.0, 40.0, 1.5), DVec3::X),
+        line(1, 1.0, at(56.0, 26.0, 1.5), at(70.0, 26.0, 1.5), DVec3::Y),
+        line(0, 2.0, at(56.0, 26.0, 1.0), at(56.0, 40.0, 1.0), -DVec3::X),
+        line(0, 2.0, at(56.0, 26.0, 1.0), at(70.0, 26.0, 1.0), -DVec3::Y),
+    ];
+    let bridges = step_bridges(&edges);
+    assert_eq!(bridges.len(), 2, "{bridges:?}");
+    assert!(bridge_corners(&bridges, &edges, 1e-9).is_empty());
+}

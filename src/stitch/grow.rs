@@ -13,6 +13,7 @@ use crate::kernel::protocol::{CornerRequest, Extended, GatherPart, Gathered, Req
 use crate::kernel::{FuseKind, Kernel, SidecarError};
 use crate::model::shapes::{EdgeProbe, Fused};
 use crate::trim::Branch;
+use glam::DVec3;
 
 /// What a pass makes: the patches fused again, the pieces kept and the branches dropped.
 pub(super) type Grown = (Fused, Vec<bool>, Vec<Branch>);
@@ -128,7 +129,7 @@ pub(super) fn grow<K: Kernel>(
         };
         grows.push(grow);
     }
-    let (steps, bridged) = step_quads(&open_edges, patches, solids, pass == Pass::Joints, tally);
+    let (steps, step_corners, bridged) = step_quads(&open_edges, patches, solids, pass == Pass::Joints, fuzzy, tally);
     let planned: Vec<Planned> =
         grows.into_iter().enumerate().filter(|(k, _)| !bridged.contains(k)).filter_map(|(_, g)| g).collect();
     if pass != Pass::Joints && planned.is_empty() && steps.is_empty() {
@@ -138,7 +139,8 @@ pub(super) fn grow<K: Kernel>(
     let mut strips: Vec<(usize, usize)> = Vec::new();
     let mut extended_handle = None;
     if !planned.is_empty() || !steps.is_empty() {
-        let corners = corners(&planned, fuzzy);
+        let mut corners = corners(&planned, fuzzy);
+        corners.extend(step_corners);
         let extended: Extended = kernel.call(&Request::ExtendEdges {
             handle: fused.handle,
             strips: planned.iter().map(|(_, s, _, _)| s.clone()).collect(),
@@ -229,15 +231,18 @@ struct OpenEdge<'a> {
 
 /// The quads bridging open edges across thickness steps (`bridge::step_bridges`) and, with `gaps` (the first
 /// pass), across gaps in a tube's own surface (`bridge::ruling_gaps`), each owned by its `owner` edge's patch,
-/// with its joint key and the lengths of both edges; and the free edges (indices) bridged. The edges that found
-/// no partner and no bridge are tallied as having no partner.
+/// with its joint key and the lengths of both edges; the quads filling the notches where two step bridges of
+/// one patch meet at a corner (`bridge::bridge_corners`, those whose middle lies in the material), by patch;
+/// and the free edges (indices) bridged. The edges that found no partner and no bridge are tallied as having no
+/// partner.
 fn step_quads(
     open: &[OpenEdge],
     patches: &[PatchInfo],
     solids: &[SolidMesh],
     gaps: bool,
+    fuzzy: f64,
     tally: &mut JointTally,
-) -> (Vec<StepQuad>, BTreeSet<usize>) {
+) -> (Vec<StepQuad>, Vec<(usize, CornerRequest)>, BTreeSet<usize>) {
     let edges: Vec<bridge::LooseEdge> = open
         .iter()
         .map(|e| {
@@ -259,7 +264,17 @@ fn step_quads(
         .collect();
     let mut bridged = vec![false; open.len()];
     let mut out = Vec::new();
-    for bridge::StepBridge { owner, other, quad, normal, axis } in bridge::step_bridges(&edges) {
+    let steps = bridge::step_bridges(&edges);
+    let same_point = (fuzzy * CORNER_SAME_POINT_FUZZY).max(CORNER_SAME_POINT_MIN);
+    let step_corners: Vec<(usize, CornerRequest)> = bridge::bridge_corners(&steps, &edges, same_point)
+        .into_iter()
+        .filter(|&(owner, quad, _)| {
+            let middle = quad.iter().copied().sum::<DVec3>() / 4.0;
+            solids[patches[edges[owner].patch].solid].contains(middle)
+        })
+        .map(|(owner, points, normal)| (edges[owner].patch, CornerRequest { points, normal, axis: None }))
+        .collect();
+    for bridge::StepBridge { owner, other, quad, normal, axis } in steps {
         (bridged[owner], bridged[other]) = (true, true);
         let mut ids = vec![edges[owner].patch + 1, edges[other].patch + 1];
         ids.sort_unstable();
@@ -289,7 +304,7 @@ fn step_quads(
         tally.add((vec![e.patch + 1], "none", "no_partner"), e.length);
     }
     let free = open.iter().zip(&bridged).filter(|(_, &b)| b).map(|(e, _)| e.free).collect();
-    (out, free)
+    (out, step_corners, free)
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
