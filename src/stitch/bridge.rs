@@ -219,8 +219,8 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     out
 }
 
-/// Where two bridges owned by one patch meet at a corner of its edges (a pocket's or a pad's corner, each side
-/// bridged by a ramp into the surrounding wall), their far sides stop short of each other and leave a notch: v
+/// Where two bridges owned by one patch meet at a corner of its edges (a pocket's corner, each side bridged by
+/// a ramp into the surrounding wall), their far sides stop short of each other and leave a notch: v
 /// (the corner they share), a and b (their far ends there) and c, where their far lines meet. The quad v, a, c, b
 /// fills it, oriented along the owner's normal (owner edge, quad, normal). Only where the far lines run apart
 /// from the corner (a convex corner of the owner: at a reflex one the bridges overlap instead), meeting within
