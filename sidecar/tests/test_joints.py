@@ -191,16 +191,6 @@ def test_a_cone_foot_grows_along_its_own_cone():
     assert surface_props(grown).Mass() == pytest.approx(math.pi * (6.1 + 6.0) * slant / 10.0, rel=1e-9)
 
 
-def test_a_corner_quad_whose_last_two_points_are_one_is_a_triangle():
-    """A gusset's slanted rim carried past its strip's end: v (10, 5, 2), the strip's far end (10, 5, 0.5) and
-    where the rim's line reaches the strip's far side (11.5, 5, 0.5), sent with the last point repeated."""
-    far = (11.5, 5.0, 0.5)
-    triangle = corner([(10.0, 5.0, 2.0), (10.0, 5.0, 0.5), far, far], (0.0, 1.0, 0.0))
-    assert BRepCheck_Analyzer(triangle).IsValid()
-    assert len(subshapes(triangle, TopAbs_EDGE)) == 3
-    assert surface_props(triangle).Mass() == pytest.approx(0.5 * 1.5 * 1.5, rel=1e-9)
-
-
 def test_a_step_bridge_between_coaxial_arcs_is_a_band_of_a_cone_sharing_its_arcs():
     # A rim band's mid-surface (radius 10.76 from z = 35.64 up) over a rounded corner's wall (radius 10.39 up to
     # z = 35.64): the ramp from the band's edge down to an arc 0.635 inside the wall's patch, a quarter turn.
