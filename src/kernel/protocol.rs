@@ -72,8 +72,7 @@ pub struct StripRequest {
     pub onto_face: bool,
 }
 
-/// A quad closing the notch between two strips at a corner of a patch, oriented along the patch's normal (a
-/// triangle when its last two points are one). With
+/// A quad closing the notch between two strips at a corner of a patch, oriented along the patch's normal. With
 /// `axis` (a point on it and its direction) the quad is a band between two coaxial arcs instead: from points[0]
 /// to points[3] and from points[1] to points[2], each turning counter-clockwise about the direction.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -252,8 +252,7 @@ def _planar_quad(plane: gp_Pln, points: list[Vec]) -> TopoDS_Face:
 def corner(points: list[Vec], normal: Vec, axis: tuple[Vec, Vec] | None = None) -> TopoDS_Face:
     """The quad v, a, c, b filling the notch between two strips grown from the edges meeting at a corner v of
     a patch: a and b are their far corners over v, c closes the parallelogram. Plane if flat, else ruled
-    between v->a and b->c; oriented along the patch's `normal` at v. With c = b it is the triangle v, a, b (the
-    polygon drops the repeated point): a rim's line carried past a strip's end. With `axis` (a point, a direction) the
+    between v->a and b->c; oriented along the patch's `normal` at v. With `axis` (a point, a direction) the
     quad is a band between two coaxial arcs (a step bridge round a rounded corner, `_coaxial_band`)."""
     made = _coaxial_band(points, axis) if axis is not None else _corner(points)
     return _oriented_like(made, normal)
