@@ -357,18 +357,6 @@ def plate_pockets() -> Fixture:
     return Fixture(single_solid(part), 12000 - 200 - 204, 18)
 
 
-def l_gusset() -> Fixture:
-    """l_bracket (legs 50 along x and 50 up z, 40 wide along y, 2 thick) with a gusset 2 thick in its inner corner,
-    half-way across (y 19 to 21): a right triangle with legs 28 on the inner faces of the bracket, its slanted
-    edge meeting each leg at 45 degrees. The gusset's mid-patch grows onto both legs' mid-patches (T-joints);
-    where its slanted rim meets a leg, the rim's line runs on into the leg past the end of the strip.
-    Faces: 11. Volume: 50 * 40 * 2 + 48 * 40 * 2 + 28 * 28 / 2 * 2.
-    """
-    bracket = box(0, 0, 0, 50, 40, 2) + box(0, 0, 0, 2, 40, 50)
-    gusset = prism_xz(polygon_xz([(2, 2), (30, 2), (2, 30)]), 2).moved(Location((0, 19, 0)))
-    return Fixture(single_solid(bracket + gusset), 4000 + 3840 + 784, 11)
-
-
 def cylinders_meet(r: float, big: float) -> float:
     """Volume common to a cylinder of radius `r` on a vertical axis, from the axis of a horizontal one of radius
     `big` >= r (crossing it at right angles) upwards, and that horizontal one: the integral over the disc of
@@ -946,7 +934,6 @@ PARTS: list[Callable[[], Fixture]] = [
     t_rib_rounded,
     plate_step,
     plate_pockets,
-    l_gusset,
     pipe_tee,
     cover_pin,
     plate_hairline_groove,

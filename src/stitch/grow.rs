@@ -140,7 +140,6 @@ pub(super) fn grow<K: Kernel>(
     let mut extended_handle = None;
     if !planned.is_empty() || !steps.is_empty() {
         let mut corners = corners(&planned, fuzzy);
-        corners.extend(rim_ends(&planned, fused, keep, patches, solids, fuzzy));
         corners.extend(step_corners);
         let extended: Extended = kernel.call(&Request::ExtendEdges {
             handle: fused.handle,
@@ -350,71 +349,6 @@ fn corners(planned: &[Planned], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
                     let points = [va, far_a, far_a + far_b - va, far_b];
                     out.push((*patch, CornerRequest { points, normal, axis: None }));
                 }
-            }
-        }
-    }
-    out
-}
-
-/// The far end of a rim edge's extension lies at most this many strip lengths past the strip's far end: a rim
-/// meeting the wall at 60 degrees or less from square (a steeper one runs along the wall, not into it).
-const RIM_END_RUN: f64 = 1.75;
-/// A rim edge continues the patch across a strip's end only while it stays within this angle (degrees) of the
-/// patch's tangent plane.
-const RIM_END_TILT_DEG: f64 = 10.0;
-
-/// A strip grown onto a wall (a T-joint) ends square to its edge; where the patch's rim meets that edge at an
-/// angle (a gusset's or a rib's slanted end standing on the wall), the rim's line runs on into the wall past the
-/// strip's end and the material between is left out: an open edge half a wall long inside the wall. The triangle
-/// v, a, b fills it: v the strip's end on the edge, a its far end, b where the rim's line reaches the strip's
-/// far side (sent as the quad v, a, b, b). Only onto a face, past the strip's end (not back over it), with the
-/// triangle's middle in the material.
-fn rim_ends(
-    planned: &[Planned],
-    fused: &Fused,
-    keep: &[bool],
-    patches: &[PatchInfo],
-    solids: &[SolidMesh],
-    fuzzy: f64,
-) -> Vec<(usize, CornerRequest)> {
-    let same_point = (fuzzy * CORNER_SAME_POINT_FUZZY).max(CORNER_SAME_POINT_MIN);
-    let tilt = RIM_END_TILT_DEG.to_radians().sin();
-    let grown = |edge: usize, face: usize| planned.iter().any(|(_, s, _, _)| s.edge == edge && s.face == face);
-    let mut out = Vec::new();
-    for (patch, s, _, p) in planned.iter().filter(|(_, s, _, _)| s.onto_face) {
-        let n = p.points.len();
-        for (k, next) in [(0, 1), (n - 1, n - 2)] {
-            let (v, len) = (p.points[k], s.lengths[k]);
-            let (along, outward, normal) = ((v - p.points[next]).normalize_or_zero(), p.outward[k], p.normals[k]);
-            // The patch's rim edges through v: free (only this face kept on them) and not grown themselves.
-            for &e in &fused.faces[s.face].edges {
-                let edge = &fused.edges[e];
-                let kept: Vec<usize> = edge.faces.iter().copied().filter(|&f| keep[f]).collect();
-                if e == s.edge || kept != [s.face] || grown(e, s.face) || edge.points.len() < 2 {
-                    continue;
-                }
-                let m = edge.points.len();
-                let inner = if edge.points[0].distance(v) <= same_point {
-                    edge.points[1]
-                } else if edge.points[m - 1].distance(v) <= same_point {
-                    edge.points[m - 2]
-                } else {
-                    continue;
-                };
-                // The rim's line carried on past v.
-                let x = (v - inner).normalize_or_zero();
-                let (into, past) = (x.dot(outward), x.dot(along));
-                if into <= 0.0 || past <= 0.0 || x.dot(normal).abs() > tilt {
-                    continue;
-                }
-                let a = v + outward * len;
-                let b = v + x * (len / into);
-                let run = (b - a).dot(along);
-                let middle = (v + a + b) / 3.0;
-                if run <= same_point || run > RIM_END_RUN * len || !solids[patches[*patch].solid].contains(middle) {
-                    continue;
-                }
-                out.push((*patch, CornerRequest { points: [v, a, b, b], normal, axis: None }));
             }
         }
     }

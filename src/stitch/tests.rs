@@ -393,35 +393,3 @@ fn a_later_pass_that_breaks_a_face_counts_its_edges_as_open_and_is_undone() {
     assert_eq!(rims_result_with_face_invalid(true).fused.handle, 40, "the joints pass's result stands");
     assert_eq!(rims_result_with_face_invalid(false).fused.handle, 41, "the rims pass's result stands");
 }
-
-#[test]
-fn a_gussets_slanted_rim_is_carried_into_the_wall_past_the_end_of_its_strip() {
-    // A plate 2 thick (mid-patch 0 at z = 1) and a gusset 2 thick standing on it (mid-patch 1 in the plane
-    // y = 5): its bottom edge on the plate's top from x = 0 to 10, a square rim up x = 0 and a slanted rim from
-    // (10, 5, 2) up to (0, 5, 12). The bottom edge grows onto the plate (1.5 down, to z = 0.5); past its end at
-    // x = 10 the slanted rim's line runs on to (11.5, 5, 0.5): that triangle is added, the square end gets none.
-    let (p, q, top) = (DVec3::new(0.0, 5.0, 2.0), DVec3::new(10.0, 5.0, 2.0), DVec3::new(0.0, 5.0, 12.0));
-    let mut fused = fused(
-        vec![face(0, DVec3::Z), face(1, DVec3::Y)],
-        vec![edge(p, q, &[1]), edge(q, top, &[1]), edge(p, top, &[1])],
-    );
-    fused.faces[1].edges = vec![0, 1, 2];
-    let slant = DVec3::new(1.0, 0.0, 1.0).normalize();
-    let probes = json!({"edges": [
-        probe(p, q, DVec3::Y, -DVec3::Z, &[(0, 1.0, 0.0)]),
-        probe(q, top, DVec3::Y, slant, &[]),
-        probe(p, top, DVec3::Y, -DVec3::X, &[]),
-    ]});
-    let mut replies = vec![probes];
-    replies.extend(pass_replies(1, 1, 2));
-    let patches = [info(2.0, (1, 0)), info(2.0, (1, 1))];
-    let (_, kernel) = run(&fused, &patches, (DVec3::new(-50.0, 0.0, 0.0), DVec3::new(100.0, 10.0, 2.0)), replies);
-
-    let (strips, corners) = extend_request(&kernel);
-    assert_eq!(strips.len(), 1, "only the bottom edge grows");
-    assert_eq!(corners.len(), 1, "{corners:?}");
-    let expected = [q, DVec3::new(10.0, 5.0, 0.5), DVec3::new(11.5, 5.0, 0.5), DVec3::new(11.5, 5.0, 0.5)];
-    for (got, want) in corners[0].points.iter().zip(expected) {
-        assert!(got.distance(want) < 1e-9, "{:?}", corners[0].points);
-    }
-}
