@@ -1,10 +1,18 @@
-"""Points of a face: area samples that stand for small regions, as the clip's tongue test needs them."""
+"""Points of a face: area samples that stand for small regions, as the clip's tongue test needs them; the point a
+fuse's reply gives a sliver with no point found inside it."""
 
 import pytest
+from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 from OCP.gp import gp_Pln
+from OCP.TopAbs import TopAbs_FACE
+from OCP.TopoDS import TopoDS_Compound
 
+from midsurf_sidecar.fuse.fused_graph import describe
+from midsurf_sidecar.geom.face_measure import measure
 from midsurf_sidecar.geom.face_point import area_samples
+from midsurf_sidecar.geom.topology import indexed_map
+from midsurf_sidecar.protocol.errors import KernelError
 
 
 def rectangle(dx: float, dy: float):
@@ -44,9 +52,6 @@ def test_a_sliver_with_no_point_found_inside_is_measured_on_its_longest_edge():
     # A 10 x 1e-5 strip: the classifier finds no point inside it (its UV centre lies within the face's
     # tolerance of its edges, every step beside an edge is wider than it). A fuse's reply measures it at the
     # middle of its longest edge rather than failing; patch making still refuses it.
-    from midsurf_sidecar.geom.face_measure import measure
-    from midsurf_sidecar.protocol.errors import KernelError
-
     sliver = rectangle(10.0, 1e-5)
     with pytest.raises(KernelError, match="no point inside the face"):
         measure(sliver)
@@ -58,13 +63,6 @@ def test_a_sliver_with_no_point_found_inside_is_measured_on_its_longest_edge():
 
 
 def test_a_fuse_reply_describes_a_sliver_face():
-    from OCP.BRep import BRep_Builder
-    from OCP.TopAbs import TopAbs_FACE
-    from OCP.TopoDS import TopoDS_Compound
-
-    from midsurf_sidecar.fuse.fused_graph import describe
-    from midsurf_sidecar.geom.topology import indexed_map
-
     builder, compound = BRep_Builder(), TopoDS_Compound()
     builder.MakeCompound(compound)
     builder.Add(compound, rectangle(10.0, 2.0))

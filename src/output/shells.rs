@@ -54,9 +54,9 @@ fn canonical(fused: &Fused, mut sets: Vec<Vec<usize>>, grid: f64) -> Vec<Vec<usi
         (f.patch, cell(f.centroid.x), cell(f.centroid.y), cell(f.centroid.z), cell(f.area))
     };
     for set in &mut sets {
-        set.sort_by_key(|&p| key(p));
+        set.sort_by_cached_key(|&p| key(p));
     }
-    sets.sort_by_key(|set| set.first().map(|&p| key(p)));
+    sets.sort_by_cached_key(|set| set.first().map(|&p| key(p)));
     sets
 }
 

@@ -265,7 +265,7 @@ fn step_quads(
     let mut bridged = vec![false; open.len()];
     let mut out = Vec::new();
     let steps = bridge::step_bridges(&edges);
-    let same_point = (fuzzy * CORNER_SAME_POINT_FUZZY).max(CORNER_SAME_POINT_MIN);
+    let same_point = same_point(fuzzy);
     let step_corners: Vec<(usize, CornerRequest)> = bridge::bridge_corners(&steps, &edges, same_point)
         .into_iter()
         .filter(|&(owner, quad, _)| {
@@ -318,8 +318,13 @@ const CORNER_SAME_POINT_MIN: f64 = 1e-9;
 /// Edges whose outward directions are within this angle (degrees) continue each other: no notch between them.
 const CORNER_CONTINUING_DEG: f64 = 10.0;
 
+/// How close two ends must be to be one corner, for a fuse of fuzzy value `fuzzy`.
+fn same_point(fuzzy: f64) -> f64 {
+    (fuzzy * CORNER_SAME_POINT_FUZZY).max(CORNER_SAME_POINT_MIN)
+}
+
 fn corners(planned: &[Planned], fuzzy: f64) -> Vec<(usize, CornerRequest)> {
-    let same_point = (fuzzy * CORNER_SAME_POINT_FUZZY).max(CORNER_SAME_POINT_MIN);
+    let same_point = same_point(fuzzy);
     let continuing = CORNER_CONTINUING_DEG.to_radians().cos();
     // (point, direction along the edge into that end, outward, length, normal) at both ends of a strip.
     let ends = |s: &StripRequest, p: &EdgeProbe| {
