@@ -218,3 +218,7 @@ ANCHOR_FAR = 100.0
 # moves (fuzzy x its boundary). Faces whose pieces differ by more, together by more than this share of the area
 # split, are a broken result (inverted or dropped loops), not a split (geom.booleans.check_area_kept).
 AREA_KEPT_SHARE = 0.01
+
+# The faces whose areas and centroids are kept once integrated (geom.topology.face_props): more than the faces of
+# the largest stitching seen (about 2,000 inputs and pieces per fuse), few enough to hold in memory.
+FACE_PROPS_KEPT = 20_000

@@ -153,3 +153,23 @@ def test_fuse_arguments_are_a_face_alone_a_compound_for_a_group_and_loose_faces_
     assert group.ShapeType() == TopAbs_COMPOUND and len(subshapes(group, TopAbs_FACE)) == 2
     loose = arguments([[a, b, c]])
     assert len(loose) == 3 and all(x.IsSame(y) for x, y in zip(loose, (a, b, c)))
+
+
+def test_a_faces_area_is_integrated_once_and_told_apart_from_another_face_and_orientation(monkeypatch):
+    from midsurf_sidecar.geom import topology
+
+    calls = []
+    integrate = topology.surface_props
+    monkeypatch.setattr(topology, "surface_props", lambda shape: calls.append(shape) or integrate(shape))
+    monkeypatch.setattr(topology, "_FACE_PROPS", {})
+    plate, other = horizontal(), vertical(30.0)
+    first = topology.face_props(plate)
+    assert topology.face_props(plate) is first and len(calls) == 1
+    assert first.Mass() == pytest.approx(integrate(plate).Mass(), rel=1e-12)
+    assert topology.face_props(other).Mass() == pytest.approx(integrate(other).Mass(), rel=1e-12)
+    assert topology.face_props(plate.Reversed()) is not first and len(calls) == 3
+    # Past FACE_PROPS_KEPT faces, all are dropped: the next face is integrated again.
+    monkeypatch.setattr(topology, "FACE_PROPS_KEPT", 1)
+    topology.face_props(vertical(45.0))
+    topology.face_props(plate)
+    assert len(calls) == 5

@@ -17,7 +17,7 @@ from OCP.TopoDS import TopoDS_Shape
 from ..constants import AREA_KEPT_SHARE, CONFUSION, SAME_DOMAIN_ANGLE
 from ..protocol.errors import KernelError, one_line
 from .pole_offset import on_pole_offset
-from .topology import boundary_length, compound_of, indexed_map, subshapes, surface_props
+from .topology import boundary_length, compound_of, face_props, indexed_map, subshapes
 
 # MIDSURF_SERIAL_BOOLEANS=1 runs every boolean on one thread.
 SERIAL_VAR = "MIDSURF_SERIAL_BOOLEANS"
@@ -87,12 +87,12 @@ def check_area_kept(builder: BRepAlgoAPI_BuilderAlgo | BOPAlgo_Builder, faces: l
     fuzzy value moves (fuzzy x its boundary); beyond that, the faces together by AREA_KEPT_SHARE of their area."""
     total, excess, worst = 0.0, 0.0, (0.0, -1, 0.0, 0.0)
     for k, face in enumerate(faces):
-        area = surface_props(face).Mass()
+        area = face_props(face).Mass()
         total += abs(area)
         images = builder.Modified(face)
         if images.Size() == 0 and not builder.IsDeleted(face):
             continue
-        pieces = sum(surface_props(image).Mass() for image in images)
+        pieces = sum(face_props(image).Mass() for image in images)
         beyond = abs(pieces - area) - fuzzy * boundary_length(face)
         if beyond > 0.0:
             excess += beyond
@@ -136,7 +136,7 @@ def unify(faces: list[TopoDS_Shape], fuzzy: float) -> TopoDS_Shape:
 
 def _sound(face: TopoDS_Shape) -> bool:
     """A face BRepCheck passes, with a positive area."""
-    return surface_props(face).Mass() > 0.0 and BRepCheck_Analyzer(face).IsValid()
+    return face_props(face).Mass() > 0.0 and BRepCheck_Analyzer(face).IsValid()
 
 
 def _alerts(builder: BOPAlgo_Builder) -> str:

@@ -7,7 +7,7 @@ from OCP.TopoDS import TopoDS_Face
 from .face_normals import OutwardNormals
 from ..protocol.errors import KernelError
 from .face_point import edge_point, interior_point
-from .topology import diagonal, surface_props
+from .topology import diagonal, face_props
 from .vectors import xyz
 
 
@@ -15,7 +15,7 @@ def measure(face: TopoDS_Face, sliver_ok: bool = False) -> dict[str, Any]:
     """`{"area", "centroid", "point", "normal"}`: `point` lies on the face (the centroid of a curved or holed
     face need not), `normal` is the oriented face's normal there. With `sliver_ok`, a face with no point found
     inside it (a sliver a fuse left) is measured at the middle of one of its edges instead of failing."""
-    props = surface_props(face)
+    props = face_props(face)
     normals = OutwardNormals(face)
     try:
         point, normal = interior_point(normals, diagonal(face))
