@@ -179,6 +179,9 @@ POLYGON_MIN_LENGTH = 1e-10
 # A spline's samples are kept for the whole probe only up to this many points (about 20 MB); past it (a spline of
 # hundreds of spans), each ray samples it anew as IntCS does.
 POLYHEDRON_MAX_POINTS = 200_000
+# Polylines within this share of the probe's reach of a target face's edges (about 0.5 um for a 4.5 mm reach) find
+# the edges nearest a meeting off the face; the distance is then measured to those edges exactly.
+GAP_DEFLECTION_RATIO = 1e-4
 # Outward directions (unit vectors) and lengths equal to this (relative) share make one straight sweep; also how far
 # an edge's ends may differ in v (relative to the sweep, at least 1 mm) and still be a circle of its cylinder.
 SWEEP_PARALLEL = 1e-6

@@ -241,3 +241,34 @@ def test_an_edge_ending_at_a_singular_point_is_sampled_just_short_of_it():
         # The two edges at the corner keep a sample within 1% of their length of it.
         corner_edges += min(norm(s.point) for s in samples) < 0.1
     assert checked == 20 and corner_edges == 2
+
+
+def test_a_point_off_a_face_is_as_far_from_its_nearest_edges_as_from_the_whole_face():
+    """FaceEdges measures only to the edges its polylines shortlist: the distances equal BRepExtrema's to the
+    whole face, bit for bit, for points of the support surfaces off a holed plate (in its holes and around it)
+    and off a half cylinder (past its straight edges and its arcs)."""
+    import math
+    import random
+
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+    from OCP.Geom import Geom_CylindricalSurface
+    from OCP.gp import gp_Ax3
+
+    from midsurf_sidecar.joints.edge_probe import FaceEdges
+
+    plate = holed_faces()[0]
+    cylinder = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 5.0)
+    half = BRepBuilderAPI_MakeFace(cylinder, -math.pi / 2, math.pi / 2, 0.0, 10.0, 1e-7).Face()
+    generator = random.Random(7)
+    points = {
+        id(plate): [(-15 + 1.2 * generator.uniform(-1, 1), -10 + 1.2 * generator.uniform(-1, 1), 1.0)]
+        + [(generator.uniform(-30, 30), generator.choice([-1, 1]) * generator.uniform(16, 25), 1.0) for _ in range(20)],
+        id(half): [xyz_of(cylinder.Value(generator.uniform(1.7, 4.6), generator.uniform(-3, 13))) for _ in range(20)]
+        + [xyz_of(cylinder.Value(generator.uniform(-1.5, 1.5), generator.choice([-2.0, 12.5]))) for _ in range(10)],
+    }
+    for face in (plate, half):
+        edges = FaceEdges(face, 4.5e-4)
+        for point in points[id(face)]:
+            exact = BRepExtrema_DistShapeShape(BRepBuilderAPI_MakeVertex(gp_Pnt(*point)).Vertex(), face).Value()
+            assert edges.distance(point) == exact

@@ -37,6 +37,7 @@ from OCP.IntCurveSurface import (
     IntCurveSurface_ThePolygonOfHInter,
     IntCurveSurface_ThePolyhedronOfHInter,
 )
+from OCP.GCPnts import GCPnts_QuasiUniformDeflection
 from OCP.IntTools import IntTools_FClass2d
 from OCP.Intf import Intf_Tool
 from OCP.collections import Array1_double
@@ -46,6 +47,7 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Wire
 
 from ..constants import (
+    GAP_DEFLECTION_RATIO,
     HULL_DIRECTIONS,
     HULL_MARGIN,
     POLYGON_MIN_LENGTH,
@@ -59,7 +61,7 @@ from ..constants import (
     SINGULAR_METRIC,
     SINGULAR_NUDGES,
 )
-from ..geom.topology import diagonal
+from ..geom.topology import diagonal, indexed_map
 from ..geom.vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 from ..protocol.errors import BadArgs, KernelError
 
@@ -376,12 +378,66 @@ class RaySurface:
         return None
 
 
+class FaceEdges:
+    """A target face's edges, to measure how far a point off the face is from it (the distance to its nearest
+    edge: a point of the support surface off the face is nearest the face on its boundary). Polylines within
+    `deflection` of the edges find the edges that can be nearest, and the distance is measured exactly to those
+    alone: measured to the whole face (BRepExtrema), it took a millisecond a meeting, and nine meetings in ten
+    lie off their face. When an edge cannot be sampled, the distance is measured to the whole face."""
+
+    def __init__(self, face: TopoDS_Face, deflection: float) -> None:
+        import numpy  # only for parts with free edges that meet faces
+
+        self.face = face
+        self.deflection = deflection
+        self.edges: list[TopoDS_Edge] = []
+        starts, ends, owners = [], [], []
+        # Each edge once (a seam bounds its face twice).
+        unique = indexed_map(face, TopAbs_EDGE)
+        for k in range(1, unique.Size() + 1):
+            edge = TopoDS.Edge(unique.FindKey(k))
+            if BRep_Tool.Degenerated_s(edge):
+                continue
+            points = GCPnts_QuasiUniformDeflection(BRepAdaptor_Curve(edge), deflection)
+            if not points.IsDone() or points.NbPoints() < 2:
+                self.edges = []
+                break
+            polyline = [xyz(points.Value(j)) for j in range(1, points.NbPoints() + 1)]
+            starts.extend(polyline[:-1])
+            ends.extend(polyline[1:])
+            owners.extend([len(self.edges)] * (len(polyline) - 1))
+            self.edges.append(edge)
+        self.starts = numpy.array(starts).reshape(-1, 3)
+        self.spans = numpy.array(ends).reshape(-1, 3) - self.starts
+        lengths = (self.spans * self.spans).sum(axis=1)
+        self.lengths = numpy.where(lengths > 0.0, lengths, 1.0)
+        self.owners = numpy.array(owners, dtype=int)
+
+    def distance(self, point: Vec) -> float:
+        """From `point`, a point of the face's support surface off the face, to the face."""
+        import numpy
+
+        vertex = BRepBuilderAPI_MakeVertex(gp_Pnt(*point)).Vertex()
+        if not self.edges:
+            return _distance(vertex, self.face)
+        relative = numpy.array(point) - self.starts
+        along = numpy.clip((relative * self.spans).sum(axis=1) / self.lengths, 0.0, 1.0)
+        off = relative - along[:, None] * self.spans
+        near = numpy.sqrt((off * off).sum(axis=1))
+        # An edge lies within `deflection` of its polyline: only the edges whose polylines come within twice that
+        # of the nearest can hold the nearest point.
+        candidates = sorted(set(self.owners[near <= near.min() + 2.0 * self.deflection].tolist()))
+        return min(_distance(vertex, self.edges[k]) for k in candidates)
+
+
 class TargetFaces:
-    """Faces rays may meet: their support surfaces, boxes (for a quick miss) and classifiers."""
+    """Faces rays may meet: their support surfaces, boxes (for a quick miss), classifiers and edges."""
 
     def __init__(self, faces: dict[int, TopoDS_Face], reach: float) -> None:
         self.faces = faces
         self.surfaces = {i: RaySurface(f, reach) for i, f in faces.items()}
+        self.deflection = GAP_DEFLECTION_RATIO * reach
+        self._edges: dict[int, FaceEdges] = {}
         # Boxes grown by the reach once, not per ray.
         self.boxes = {}
         for i, f in faces.items():
@@ -414,20 +470,24 @@ class TargetFaces:
             for p in self.surfaces[i].meetings(line, origin, direction, reach):
                 distance = dot(sub(p, origin), direction)
                 if 0.0 < distance <= reach:
-                    found.append({"face": i, "distance": distance, "gap": self._gap(face, p)})
+                    found.append({"face": i, "distance": distance, "gap": self._gap(i, face, p)})
         found.sort(key=lambda h: (h["distance"], h["face"]))
         return found
 
-    @staticmethod
-    def _gap(face: TopoDS_Face, point: Vec) -> float:
+    def _gap(self, i: int, face: TopoDS_Face, point: Vec) -> float:
         tolerance = BRep_Tool.Tolerance_s(face)
         if BRepClass_FaceClassifier(face, gp_Pnt(*point), tolerance).State() == TopAbs_IN:
             return 0.0
-        vertex = BRepBuilderAPI_MakeVertex(gp_Pnt(*point)).Vertex()
-        distance = BRepExtrema_DistShapeShape(vertex, face)
-        if not distance.IsDone():
-            raise KernelError("point-to-face distance failed")
-        return distance.Value()
+        if i not in self._edges:
+            self._edges[i] = FaceEdges(face, self.deflection)
+        return self._edges[i].distance(point)
+
+
+def _distance(vertex: TopoDS_Shape, shape: TopoDS_Shape) -> float:
+    distance = BRepExtrema_DistShapeShape(vertex, shape)
+    if not distance.IsDone():
+        raise KernelError("point-to-face distance failed")
+    return distance.Value()
 
 
 def probe(edges: list[tuple[TopoDS_Face, TopoDS_Shape, int]], targets: TargetFaces, samples: int, reach: float) -> list[dict[str, Any]]:
