@@ -14,9 +14,7 @@ from typing import Any
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
 from OCP.BRepClass import BRepClass_FaceClassifier
-from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.Bnd import Bnd_Box
 from OCP.BRepTools import BRepTools
 from OCP.Geom import (
@@ -61,7 +59,7 @@ from ..constants import (
     SINGULAR_METRIC,
     SINGULAR_NUDGES,
 )
-from ..geom.topology import diagonal, indexed_map
+from ..geom.topology import diagonal, distance_to, indexed_map
 from ..geom.vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 from ..protocol.errors import BadArgs, KernelError
 
@@ -417,9 +415,8 @@ class FaceEdges:
         """From `point`, a point of the face's support surface off the face, to the face."""
         import numpy
 
-        vertex = BRepBuilderAPI_MakeVertex(gp_Pnt(*point)).Vertex()
         if not self.edges:
-            return _distance(vertex, self.face)
+            return _distance(point, self.face)
         relative = numpy.array(point) - self.starts
         along = numpy.clip((relative * self.spans).sum(axis=1) / self.lengths, 0.0, 1.0)
         off = relative - along[:, None] * self.spans
@@ -427,7 +424,7 @@ class FaceEdges:
         # An edge lies within `deflection` of its polyline: only the edges whose polylines come within twice that
         # of the nearest can hold the nearest point.
         candidates = sorted(set(self.owners[near <= near.min() + 2.0 * self.deflection].tolist()))
-        return min(_distance(vertex, self.edges[k]) for k in candidates)
+        return min(_distance(point, self.edges[k]) for k in candidates)
 
 
 class TargetFaces:
@@ -483,11 +480,12 @@ class TargetFaces:
         return self._edges[i].distance(point)
 
 
-def _distance(vertex: TopoDS_Shape, shape: TopoDS_Shape) -> float:
-    distance = BRepExtrema_DistShapeShape(vertex, shape)
-    if not distance.IsDone():
+def _distance(point: Vec, shape: TopoDS_Shape) -> float:
+    """`distance_to`, an error when OCCT cannot tell (a gap must be known)."""
+    distance = distance_to(gp_Pnt(*point), shape)
+    if distance is None:
         raise KernelError("point-to-face distance failed")
-    return distance.Value()
+    return distance
 
 
 def probe(edges: list[tuple[TopoDS_Face, TopoDS_Shape, int]], targets: TargetFaces, samples: int, reach: float) -> list[dict[str, Any]]:
