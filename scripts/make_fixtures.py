@@ -922,6 +922,22 @@ def rib_side_boss() -> Fixture:
     return Fixture(part, volume, 14)
 
 
+def rib_facing_open_ring() -> Fixture:
+    """Plate 100 x 60 x 2 with a ring wall (1.6 thick, R 9.2 to 10.8 on the axis (50, 30), z 2..22) open on its
+    left (the ring cut away over x < 50, y 24..36), and a rib 1.6 thick (y 29.2..30.8) from x = 20 to 37.5,
+    z 2..22, pointing at the opening: its end runs into a block (x 37.5..42, y 26..34, z 12..22: too thick for
+    a wall, no mid-surface) over its upper half and is free below it. The ring's mid-cylinder (R 10) would pass
+    2.5 from the rib's end (x = 40), within a joint's reach, but the ring is open there. The class: a wall ending
+    in material near where a curved wall's surface runs on but the wall does not (fins running into a hub
+    beside open rings). The rib's mid-surface ends at its end: a strip grown to the ring's surface would hang in
+    the air under the block. Faces: 22. Volume: the built solid's.
+    """
+    ring = cylinder_z(50, 30, 2, 10.8, 20) - cylinder_z(50, 30, 2, 9.2, 20) - box(30, 24, 2, 20, 12, 20)
+    part = box(0, 0, 0, 100, 60, 2) + ring + box(20, 29.2, 2, 17.5, 1.6, 20) + box(37.5, 26, 12, 4.5, 8, 10)
+    part = single_solid(part)
+    return Fixture(part, part.volume, 22)
+
+
 def vault_off_centre() -> Fixture:
     """A vault 40 long (y) closed at one end by a quarter dome, standing on z = 0: outer skin a half-cylinder R 20
     on the axis x = 20, z = 0 and a quarter sphere R 20 centred at (20, 40, 0); inner skin a cylinder R 18 and a
@@ -990,6 +1006,7 @@ PARTS: list[Callable[[], Fixture]] = [
     rib_end_over_boss,
     rib_side_boss,
     vault_off_centre,
+    rib_facing_open_ring,
 ]
 
 

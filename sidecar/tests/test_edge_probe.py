@@ -272,3 +272,23 @@ def test_a_point_off_a_face_is_as_far_from_its_nearest_edges_as_from_the_whole_f
         for point in points[id(face)]:
             exact = BRepExtrema_DistShapeShape(BRepBuilderAPI_MakeVertex(gp_Pnt(*point)).Vertex(), face).Value()
             assert edges.distance(point) == exact
+
+
+def test_a_meeting_on_the_far_side_of_a_half_cylinder_is_off_the_face():
+    """A half cylinder (r = 5 about z, the half x >= 0, z from 0 to 10) met by a ray along x at y = 3: where it
+    enters the cylinder (x = -4) the surface is off the face, whose nearest edge is the line x = 0, y = 5; the
+    face's own parameters there lie outside it. (Classified from the 3D point, OCCT projects it on the face's
+    parameter range and finds the opposite point, x = 4, which is on the face: a gap of 0 that joined edges to
+    faces they never reach.) Where it leaves (x = 4) the meeting is on the face."""
+    import math
+
+    from OCP.Geom import Geom_CylindricalSurface
+    from OCP.gp import gp_Ax3
+
+    surface = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 5.0)
+    face = BRepBuilderAPI_MakeFace(surface, -math.pi / 2, math.pi / 2, 0.0, 10.0, 1e-7).Face()
+    targets = TargetFaces({0: face}, reach=20.0)
+    hits = targets.hits((-10.0, 3.0, 5.0), (1.0, 0.0, 0.0), 20.0, [0])
+    assert [h["distance"] for h in hits] == pytest.approx([6.0, 14.0])
+    assert hits[0]["gap"] == pytest.approx(math.hypot(4.0, 2.0), abs=1e-9)
+    assert hits[1]["gap"] == 0.0

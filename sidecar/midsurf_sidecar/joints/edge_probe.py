@@ -64,6 +64,10 @@ from ..geom.vectors import Vec, add_scaled, cross, dot, norm, scale, sub, xyz
 from ..protocol.errors import BadArgs, KernelError
 
 
+# A point's parameters on a surface.
+UV = tuple[float, float]
+
+
 @dataclass(frozen=True)
 class EdgeSample:
     point: Vec
@@ -309,6 +313,8 @@ class RaySurface:
     def __init__(self, face: TopoDS_Face, reach: float) -> None:
         self.exact = BRep_Tool.Surface_s(face)
         self.locator: Geom_Surface | None = None
+        # Whether the meetings' (u, v) are the face's own parameters (not those of a spline standing for it).
+        self.own_parameters = not isinstance(self.exact, Geom_SurfaceOfLinearExtrusion)
         if isinstance(self.exact, Geom_SurfaceOfLinearExtrusion):
             # A spline swept along a line (a strip grown from a curved patch's edge) is exactly a spline of degree
             # 1 across, which GeomAPI_IntCS meets eight times faster. Meetings beyond `reach` of the face are of
@@ -334,27 +340,34 @@ class RaySurface:
             self.hull = PoleHull(spline, margin)
             self.sampled = SampledSpline.of(spline)
 
-    def meetings(self, line: Geom_Line, origin: Vec, direction: Vec, reach: float) -> list[Vec]:
+    def meetings(self, line: Geom_Line, origin: Vec, direction: Vec, reach: float) -> list[tuple[Vec, UV | None]]:
         """Points where the ray's line meets the surface, all of them or at least those within (0, reach] along
-        the ray: none when the ray keeps clear of the spline's pole hull; on a spline, through its sampling made
+        the ray, each with its (u, v) on the face's surface (None when the meeting was found on a spline standing
+        for it): none when the ray keeps clear of the spline's pole hull; on a spline, through its sampling made
         once (SampledSpline); on the locator (same parameters as the exact surface), each settled on the exact
         surface; on the exact surface alone (GeomAPI_IntCS) if it is no spline, or a meeting fails to settle."""
         if self.hull is not None and self.hull.misses(origin, direction, reach):
             return []
+        own = self.own_parameters
         if self.sampled is not None:
             met = self.sampled.meet(line)
             if self.locator is None:
-                return [point for _, _, _, point in met]
+                return [(point, (u, v) if own else None) for u, v, _, point in met]
             settled = [self._settle(u, v, w, origin, direction) for u, v, w, _ in met]
-            if all(p is not None for p in settled):
+            if all(s is not None for s in settled):
                 return settled
         meet = GeomAPI_IntCS(line, self.exact)
         if not meet.IsDone():
             return []
-        return [xyz(meet.Point(k)) for k in range(1, meet.NbPoints() + 1)]
+        found = []
+        for k in range(1, meet.NbPoints() + 1):
+            u, v, _ = meet.Parameters(k)
+            found.append((xyz(meet.Point(k)), (u, v) if own else None))
+        return found
 
-    def _settle(self, u: float, v: float, w: float, origin: Vec, direction: Vec) -> Vec | None:
-        """Newton's method on S(u, v) - (origin + w direction) = 0 from a located meeting."""
+    def _settle(self, u: float, v: float, w: float, origin: Vec, direction: Vec) -> tuple[Vec, UV] | None:
+        """Newton's method on S(u, v) - (origin + w direction) = 0 from a located meeting: the point and its
+        (u, v)."""
         point, su, sv = gp_Pnt(), gp_Vec(), gp_Vec()
         for _ in range(RAY_MEET_ITERATIONS):
             try:
@@ -363,7 +376,7 @@ class RaySurface:
                 return None
             residual = sub(xyz(point), add_scaled(origin, direction, w))
             if norm(residual) <= RAY_MEET_RESIDUAL:
-                return xyz(point)
+                return xyz(point), (u, v)
             a, b, c = xyz(su), xyz(sv), scale(direction, -1.0)
             det = dot(a, cross(b, c))
             if abs(det) <= SINGULAR_METRIC:
@@ -435,6 +448,7 @@ class TargetFaces:
         self.surfaces = {i: RaySurface(f, reach) for i, f in faces.items()}
         self.deflection = GAP_DEFLECTION_RATIO * reach
         self._edges: dict[int, FaceEdges] = {}
+        self._classifiers: dict[int, IntTools_FClass2d] = {}
         # Boxes grown by the reach once, not per ray.
         self.boxes = {}
         for i, f in faces.items():
@@ -464,16 +478,27 @@ class TargetFaces:
             face = self.faces[i]
             if self.boxes[i].IsOut(ray_box):
                 continue
-            for p in self.surfaces[i].meetings(line, origin, direction, reach):
+            for p, uv in self.surfaces[i].meetings(line, origin, direction, reach):
                 distance = dot(sub(p, origin), direction)
                 if 0.0 < distance <= reach:
-                    found.append({"face": i, "distance": distance, "gap": self._gap(i, face, p)})
+                    found.append({"face": i, "distance": distance, "gap": self._gap(i, face, p, uv)})
         found.sort(key=lambda h: (h["distance"], h["face"]))
         return found
 
-    def _gap(self, i: int, face: TopoDS_Face, point: Vec) -> float:
-        tolerance = BRep_Tool.Tolerance_s(face)
-        if BRepClass_FaceClassifier(face, gp_Pnt(*point), tolerance).State() == TopAbs_IN:
+    def _gap(self, i: int, face: TopoDS_Face, point: Vec, uv: UV | None) -> float:
+        """The meeting's distance to face i, 0 on it. Whether it is on the face is told from its own (u, v) where
+        known (IntTools_FClass2d, made once per face): from the 3D point, BRepClass_FaceClassifier projects it
+        within the face's parameter range, so a meeting on the far side of a cylinder, torus or offset surface
+        whose opposite point is on the face read as on it."""
+        if uv is not None:
+            if i not in self._classifiers:
+                forward = TopoDS.Face(face.Oriented(TopAbs_FORWARD))
+                self._classifiers[i] = IntTools_FClass2d(forward, BRep_Tool.Tolerance_s(face))
+            inside = self._classifiers[i].Perform(gp_Pnt2d(*uv)) == TopAbs_IN
+        else:
+            tolerance = BRep_Tool.Tolerance_s(face)
+            inside = BRepClass_FaceClassifier(face, gp_Pnt(*point), tolerance).State() == TopAbs_IN
+        if inside:
             return 0.0
         if i not in self._edges:
             self._edges[i] = FaceEdges(face, self.deflection)
