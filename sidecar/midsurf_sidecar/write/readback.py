@@ -12,9 +12,7 @@ from dataclasses import dataclass
 from OCP.Bnd import Bnd_Box
 from OCP.BRepAdaptor import BRepAdaptor_Curve
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.BRepExtrema import BRepExtrema_DistShapeShape
 from OCP.gp import gp_Pnt
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
@@ -22,7 +20,7 @@ from OCP.TopAbs import TopAbs_FACE, TopAbs_SHELL
 from OCP.TopoDS import TopoDS_Shape
 
 from ..constants import READBACK_MATCH, UNBOUNDED_BOX
-from ..geom.topology import bounded, curve_edges, indexed_map, subshapes
+from ..geom.topology import bounded, curve_edges, distance_to, indexed_map, subshapes
 
 
 @dataclass(frozen=True)
@@ -142,9 +140,9 @@ def _edge_midpoints(face: TopoDS_Shape) -> list[tuple[float, float, float]]:
 
 
 def _distance_to(face: TopoDS_Shape, point: tuple[float, float, float]) -> float:
-    vertex = BRepBuilderAPI_MakeVertex(gp_Pnt(*point)).Vertex()
-    extrema = BRepExtrema_DistShapeShape(vertex, face)
-    return extrema.Value() if extrema.IsDone() else float("inf")
+    """`distance_to`, infinite when OCCT cannot tell (the point then holds no face)."""
+    distance = distance_to(gp_Pnt(*point), face)
+    return float("inf") if distance is None else distance
 
 
 def _box(face: TopoDS_Shape) -> tuple[float, ...]:
