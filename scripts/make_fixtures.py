@@ -27,6 +27,7 @@ from build123d import (
     Axis, Compound, Edge, Face, Location, Plane, Polyline, RectangleRounded, Shape, Solid, Vector, Wire, export_step,
     extrude, make_face, thicken,
 )
+from build123d.topology.shape_core import SkipClean
 from OCP.BOPAlgo import BOPAlgo_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy, BRepBuilderAPI_NurbsConvert
 from OCP.BRepCheck import BRepCheck_Analyzer
@@ -364,6 +365,20 @@ def plate_pockets() -> Fixture:
     pockets = box(20, 20, 0, 10, 20, 1) + box(50, 20, 0, 20, 6, 1) + box(50, 26, 0, 6, 14, 1)
     part = box(0, 0, 0, 100, 60, 2) - pockets
     return Fixture(single_solid(part), 12000 - 200 - 204, 18)
+
+
+def plate_pocket_split_skin() -> Fixture:
+    """flat_plate with a pocket 1 deep in its underside (10 x 20 at (20, 20)) whose top over the pocket is a face
+    of its own, split from the plate's top along the pocket's outline (as CAD that builds a part from pieces
+    writes it): the two levels pair as two groups sharing no face, yet their tops are one skin, and their
+    mid-surfaces (z = 1 and z = 1.5) must meet through ramps as in plate_pockets.
+    Faces: 12 (the plate's top with a hole and its other 5; the pocket's floor and 4 walls; the top over it).
+    Volume: 12000 - 10 * 20 * 1.
+    """
+    plate = box(0, 0, 0, 100, 60, 2) - box(20, 20, 0, 10, 20, 2)
+    with SkipClean():
+        part = plate + box(20, 20, 1, 10, 20, 1)
+    return Fixture(single_solid(part), 12000 - 200, 12)
 
 
 def cylinders_meet(r: float, big: float) -> float:
@@ -975,6 +990,7 @@ PARTS: list[Callable[[], Fixture]] = [
     t_rib_rounded,
     plate_step,
     plate_pockets,
+    plate_pocket_split_skin,
     pipe_tee,
     cover_pin,
     plate_hairline_groove,

@@ -9,7 +9,7 @@ use glam::DVec3;
 #[derive(Debug, Clone)]
 pub struct LooseEdge {
     pub patch: usize,
-    /// The wall the patch was made from (solid, pair group).
+    /// The wall the patch was made from (`PatchInfo::wall`).
     pub wall: (usize, usize),
     pub thickness: f64,
     /// How far away the partner its rays found is (infinite when it found none).

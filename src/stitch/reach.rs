@@ -6,6 +6,7 @@ use crate::load::Part;
 use crate::model::params::Position;
 use crate::model::tolerance;
 use crate::pairing::driver::SolidPairing;
+use crate::pairing::levels;
 use crate::pairing::PairKind;
 use crate::patch::make::Made;
 use crate::trim::branch_limit;
@@ -25,6 +26,13 @@ pub fn patch_infos(
         let junction = &pairings[m.solid - 1].junction;
         junctions[m.solid - 1] |= m.plan.fill.iter().any(|e| junction.binary_search(e).is_ok());
     }
+    // Per solid, the wall of each pair group: the levels of a thickness step are one wall.
+    let walls: Vec<Vec<usize>> = part
+        .solids
+        .iter()
+        .zip(pairings)
+        .map(|(solid, p)| levels::walls(&solid.graph, &p.pairing.roles, p.pairing.groups.len(), &p.tolerances))
+        .collect();
     made.iter()
         .map(|m| {
             let tolerances = &pairings[m.solid - 1].tolerances;
@@ -38,7 +46,7 @@ pub fn patch_infos(
                 reach: tolerances.joint_reach + skin,
                 on_rim: tolerance::on_rim(m.plan.thickness.mean, part.solids[m.solid - 1].mesh_tolerance),
                 junction: junctions[m.solid - 1],
-                wall: (m.solid, m.plan.group),
+                wall: (m.solid, walls[m.solid - 1][m.plan.group]),
                 freeform: m.plan.kind == PairKind::Freeform,
             }
         })
