@@ -286,13 +286,15 @@ def extend_edges(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
         (face_id,) = index_list([require_int(entry, "face")], face_map.Size(), "face", "the fused shape")
         (edge_id,) = index_list([require_int(entry, "edge")], edge_map.Size(), "edge", "the fused shape")
         lengths = [as_number(v, "a strip length") for v in require_list(entry, "lengths")]
-        if len(lengths) < 2 or min(lengths) <= 0.0:
-            raise BadArgs(f"strip {j}: at least 2 lengths, all positive, got {lengths}")
+        along = as_point(entry["along"], f"strip {j}'s along") if "along" in entry else None
+        # Swept `along`, lengths of 0 make an upright band.
+        if len(lengths) < 2 or min(lengths) < 0.0 or (along is None and min(lengths) == 0.0):
+            raise BadArgs(f"strip {j}: at least 2 lengths, all positive (or 0 with `along`), got {lengths}")
         onto_face = optional_bool(entry, "onto_face", False)
         face = TopoDS.Face(face_map.FindKey(face_id + 1))
         # One strip the kernel cannot make is that joint's failure, not the whole request's.
         try:
-            made = edge_strip.strip(face, edge_map.FindKey(edge_id + 1), lengths, onto_face)
+            made = edge_strip.strip(face, edge_map.FindKey(edge_id + 1), lengths, onto_face, along)
         except Exception as exc:  # OCCT raises its own Standard_Failure types
             made_json.append({"area": None, "error": one_line(exc)})
             continue

@@ -115,6 +115,22 @@ def test_strip_needs_positive_lengths(client):
     assert reply["err"]["code"] == "bad_args"
 
 
+def test_an_edge_swept_along_a_vector_makes_an_upright_band_or_a_ramp(client):
+    """`along` (a step between two levels whose edges are one curve): lengths of 0 sweep the rib's foot straight
+    by the vector, positive lengths make a ramp to the samples moved outward and by the vector."""
+    fused = fuse(client, put_patches(client, horizontal(), rib(2.0)))
+    edge, face = free_edge_of(fused, 1, 2.0)
+    upright = {"edge": edge, "face": face, "lengths": [0.0] * 5, "along": [0.5, 0.0, 0.0]}
+    ramp = {"edge": edge, "face": face, "lengths": [0.5] * 5, "along": [0.5, 0.0, 0.0]}
+    reply = client.ok("extend_edges", handle=fused["handle"], strips=[upright, ramp])
+    areas = [made["area"] for made in reply["strips"]]
+    assert areas == [pytest.approx(40 * 0.5), pytest.approx(40 * math.hypot(0.5, 0.5))]
+    (band, slope) = fuse(client, [reply["handle"]])["faces"]
+    # The band lies in z = 2 from x = 30 to 30.5; the ramp runs down to z = 1.5 at x = 30.5.
+    assert band["centroid"] == pytest.approx([30.25, 20.0, 2.0])
+    assert slope["centroid"] == pytest.approx([30.25, 20.0, 1.75])
+
+
 def side_and_foot(solid, kind):
     """The lateral face of a solid of revolution standing on z = 0 (the face of surface `kind`) and its foot:
     the circle edge at z = 0."""

@@ -70,6 +70,10 @@ pub struct StripRequest {
     pub lengths: Vec<f64>,
     /// The edge grows onto the partner's face (a T-joint), not toward a strip grown from the partner.
     pub onto_face: bool,
+    /// The edge swept straight by this vector instead (an upright band across a thickness step whose two edges
+    /// are one curve at two levels); `lengths` only set how it is sampled.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub along: Option<glam::DVec3>,
 }
 
 /// A quad closing the notch between two strips at a corner of a patch, oriented along the patch's normal. With

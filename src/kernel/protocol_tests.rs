@@ -127,7 +127,7 @@ fn requests_encode_as_exact_json() {
         (
             Request::ExtendEdges {
                 handle: 9,
-                strips: vec![StripRequest { edge: 4, face: 1, lengths: vec![1.0, 1.5], onto_face: true }],
+                strips: vec![StripRequest { edge: 4, face: 1, lengths: vec![1.0, 1.5], onto_face: true, along: None }],
                 corners: vec![
                     CornerRequest {
                         points: [glam::DVec3::ZERO, glam::DVec3::X, glam::DVec3::ONE, glam::DVec3::Y],

@@ -22,9 +22,11 @@ pub struct LooseEdge {
     pub open: bool,
     /// Samples along the edge, ends included.
     pub points: Vec<DVec3>,
-    /// The patch normal and the outward direction (in the patch, away from it) at the edge.
+    /// The patch normal and the outward direction (in the patch, away from it) at the edge's middle sample.
     pub normal: DVec3,
     pub outward: DVec3,
+    /// The outward direction at each sample.
+    pub outwards: Vec<DVec3>,
 }
 
 /// Within this angle two directions are parallel for the step search (degrees).
@@ -217,6 +219,108 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
     }
     out.sort_by_key(|b| (b.owner, b.other));
     out
+}
+
+/// A step bridge between two edges that are one curve at two levels: the `owner` edge swept by `along` onto
+/// the `other`, straight (`run` 0: an upright band) or, for a ramp, out to `run` inside the other's patch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweptStep {
+    pub owner: usize,
+    pub other: usize,
+    pub along: DVec3,
+    pub run: f64,
+}
+
+/// Bridges across thickness steps whose edges are neither lines nor arcs about one axis (a spline outline of a
+/// pocket or a cut-out under a flat skin): two free edges of different, parallel patches that may bridge
+/// (`bridgeable`), where every sample of one edge moved by one offset along its patch's normal lies on the other
+/// edge (within `STEP_LEVEL_SHARE` of the thinner wall) and faces it, the offset no longer than the larger
+/// thickness. As between lines, the thinner edge is laid down into a ramp to `RAMP_RUN` x its thickness inside
+/// the thicker patch when the two edges are the same stretch of the outline (each lands on the other), at least
+/// the larger thickness long, and the step is higher than `STEP_LEVEL_SHARE` of the thinner wall. Otherwise the
+/// edge that lands on the other (the shorter) is swept straight onto it: an upright band, since a ramp would cut
+/// the longer edge's patch along part of its edge only. Edges `done` are left out (bridged already); each edge is
+/// bridged once, nearest pairs first.
+pub fn swept_steps(edges: &[LooseEdge], done: &[bool]) -> Vec<SweptStep> {
+    let parallel = STEP_PARALLEL_DEG.to_radians().cos();
+    let mut candidates: Vec<(f64, SweptStep)> = Vec::new();
+    for i in 0..edges.len() {
+        for j in i + 1..edges.len() {
+            let (ei, ej) = (&edges[i], &edges[j]);
+            // Facing each other is told sample by sample (`one_curve`): along a curved outline the middles of a
+            // short edge and of a long one lie apart.
+            if done[i] || done[j] || ei.patch == ej.patch || !may_bridge(ei, ej) || ei.normal.dot(ej.normal).abs() < parallel
+            {
+                continue;
+            }
+            let (thin, thick) = if ej.thickness < ei.thickness { (j, i) } else { (i, j) };
+            let (et, ek) = (&edges[thin], &edges[thick]);
+            let tolerance = STEP_LEVEL_SHARE * et.thickness;
+            let reach = ek.thickness;
+            let step = match (one_curve(et, ek, tolerance, reach), one_curve(ek, et, tolerance, reach)) {
+                (Some(along), Some(_)) => {
+                    let ramp = along.length() > STEP_LEVEL_SHARE * et.thickness && polyline_length(&et.points) >= reach;
+                    SweptStep { owner: thin, other: thick, along, run: if ramp { RAMP_RUN * et.thickness } else { 0.0 } }
+                }
+                (Some(along), None) => SweptStep { owner: thin, other: thick, along, run: 0.0 },
+                (None, Some(along)) => SweptStep { owner: thick, other: thin, along, run: 0.0 },
+                (None, None) => continue,
+            };
+            if bridgeable(ei, ej, step.along.length()) {
+                candidates.push((step.along.length(), step));
+            }
+        }
+    }
+    candidates.sort_by(|x, y| {
+        let key = |b: &SweptStep| (b.owner.min(b.other), b.owner.max(b.other));
+        x.0.total_cmp(&y.0).then(key(&x.1).cmp(&key(&y.1)))
+    });
+    let mut used = done.to_vec();
+    let mut out = Vec::new();
+    for (_, step) in candidates {
+        if !used[step.owner] && !used[step.other] {
+            (used[step.owner], used[step.other]) = (true, true);
+            out.push(step);
+        }
+    }
+    out.sort_by_key(|b| (b.owner, b.other));
+    out
+}
+
+fn polyline_length(points: &[DVec3]) -> f64 {
+    points.windows(2).map(|w| w[0].distance(w[1])).sum()
+}
+
+/// The offset along `a`'s normal that moves every sample of edge `a` onto edge `b` (within `tolerance`), facing
+/// it (outward directions apart by more than `FACING_DEG` there), when it is a step: longer than the
+/// tolerance, at most `reach`.
+fn one_curve(a: &LooseEdge, b: &LooseEdge, tolerance: f64, reach: f64) -> Option<DVec3> {
+    let middle = a.points[a.points.len() / 2];
+    let along = (nearest_on(&b.points, middle).0 - middle).project_onto_normalized(a.normal);
+    if along.length() <= tolerance || along.length() > reach {
+        return None;
+    }
+    let facing = -FACING_DEG.to_radians().cos();
+    let lands = |(p, out): (&DVec3, &DVec3)| {
+        let (q, k) = nearest_on(&b.points, *p + along);
+        q.distance(*p + along) <= tolerance && out.dot(b.outwards[k]) <= facing
+    };
+    a.points.iter().zip(&a.outwards).all(lands).then_some(along)
+}
+
+/// Two edges face each other where their outward directions lie more than this far from square (degrees): the
+/// samples of a curved edge meet the other edge between its samples, whose directions differ a little.
+const FACING_DEG: f64 = 60.0;
+
+/// The point of the polyline `points` nearest to `p`, and the sample nearest to that point.
+fn nearest_on(points: &[DVec3], p: DVec3) -> (DVec3, usize) {
+    let on_segment = |k: usize| {
+        let (a, d) = (points[k], points[k + 1] - points[k]);
+        let t = if d.length_squared() > 0.0 { ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+        (a + d * t, if t <= 0.5 { k } else { k + 1 })
+    };
+    let segments = (0..points.len().saturating_sub(1)).map(on_segment);
+    segments.chain([(points[0], 0)]).min_by(|x, y| x.0.distance(p).total_cmp(&y.0.distance(p))).expect("a sample")
 }
 
 /// Where two bridges owned by one patch meet at a corner of its edges (a pocket's corner, each side bridged by

@@ -17,6 +17,7 @@ fn open_edge(patch: usize, thickness: f64, points: Vec<DVec3>, normal: DVec3, ou
         reach: 3.0 * thickness,
         freeform: false,
         open: true,
+        outwards: vec![outward; points.len()],
         points,
         normal,
         outward,
@@ -249,4 +250,48 @@ fn ramps_meeting_at_a_pockets_reflex_corner_overlap_and_get_no_fill() {
     let bridges = step_bridges(&edges);
     assert_eq!(bridges.len(), 2, "{bridges:?}");
     assert!(bridge_corners(&bridges, &edges, 1e-9).is_empty());
+}
+
+/// Samples of a wavy curve in z = `z`, x from 0 to 20 (y = sin x, not a line or an arc), in the given direction,
+/// with outward directions square to it in the plane, on the side `side` (+1: left of the way it runs).
+fn wavy(patch: usize, thickness: f64, z: f64, (x0, x1): (f64, f64), side: f64) -> LooseEdge {
+    let at = |k: usize| x0 + (x1 - x0) * k as f64 / 40.0;
+    let points: Vec<DVec3> = (0..=40).map(|k| DVec3::new(at(k), at(k).sin(), z)).collect();
+    let outwards: Vec<DVec3> = (0..=40)
+        .map(|k| {
+            let tangent = DVec3::new(1.0, at(k).cos(), 0.0).normalize() * (x1 - x0).signum();
+            DVec3::Z.cross(tangent) * side
+        })
+        .collect();
+    LooseEdge { outwards: outwards.clone(), outward: outwards[20], ..open_edge(patch, thickness, points, DVec3::Z, outwards[20]) }
+}
+
+#[test]
+fn two_levels_of_one_wavy_outline_meet_through_a_ramp_that_follows_it() {
+    // A t=1 pocket's patch at z=1.5 (its material on the wave's left, outward to its right) and the plate's t=2
+    // patch at z=1 beyond the wave (outward to the pocket's side), the same curve, one wall.
+    let thin = LooseEdge { wall: (1, 0), ..wavy(0, 1.0, 1.5, (0.0, 20.0), -1.0) };
+    let thick = LooseEdge { wall: (1, 0), open: false, ..wavy(1, 2.0, 1.0, (20.0, 0.0), -1.0) };
+    assert!(step_bridges(&[thin.clone(), thick.clone()]).is_empty(), "neither a line nor an arc");
+    let steps = swept_steps(&[thin.clone(), thick.clone()], &[false, false]);
+    assert_eq!(steps.len(), 1, "{steps:?}");
+    let SweptStep { owner, other, along, run } = steps[0];
+    assert_eq!((owner, other), (0, 1), "the thinner level owns the ramp");
+    assert!(along.distance(DVec3::new(0.0, 0.0, -0.5)) < 1e-9, "{along:?}");
+    assert!((run - RAMP_RUN * 1.0).abs() < 1e-12);
+    // Only part of the thick edge: an upright band from the shorter edge.
+    let part = LooseEdge { wall: (1, 0), ..wavy(0, 1.0, 1.5, (0.0, 10.0), -1.0) };
+    let steps = swept_steps(&[part, thick.clone()], &[false, false]);
+    assert_eq!(steps.len(), 1, "{steps:?}");
+    assert_eq!((steps[0].owner, steps[0].run), (0, 0.0));
+    // Not facing (both patches on one side of the outline), another curve, a bridged edge: no step.
+    let same_side = LooseEdge { wall: (1, 0), ..wavy(0, 1.0, 1.5, (0.0, 20.0), 1.0) };
+    assert!(swept_steps(&[same_side, thick.clone()], &[false, false]).is_empty());
+    let mut shifted = thin.clone();
+    shifted.points.iter_mut().for_each(|p| p.y += 0.5);
+    assert!(swept_steps(&[shifted, thick.clone()], &[false, false]).is_empty());
+    assert!(swept_steps(&[thin.clone(), thick.clone()], &[false, true]).is_empty());
+    // Levels of other walls with one rim edge: not a step.
+    let other_wall = LooseEdge { wall: (1, 5), ..thick };
+    assert!(swept_steps(&[thin, other_wall], &[false, false]).is_empty());
 }

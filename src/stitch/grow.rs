@@ -9,7 +9,7 @@ use super::edges::{open, straight, to_rim};
 use super::joint::{self, Verdict};
 use super::{kept_faces, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
-use crate::kernel::protocol::{CornerRequest, Extended, GatherPart, Gathered, Request, StripRequest};
+use crate::kernel::protocol::{CornerRequest, Extended, GatherPart, Gathered, MadeStrip, Request, StripRequest};
 use crate::kernel::{FuseKind, Kernel, SidecarError};
 use crate::model::shapes::{EdgeProbe, Fused};
 use crate::trim::Branch;
@@ -92,7 +92,7 @@ pub(super) fn grow<K: Kernel>(
                         }
                         Some((
                             patch,
-                            StripRequest { edge, face, lengths, onto_face: false },
+                            StripRequest { edge, face, lengths, onto_face: false, along: None },
                             (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
                             p,
                         ))
@@ -104,6 +104,8 @@ pub(super) fn grow<K: Kernel>(
                         if pass == Pass::Joints {
                             open_edges.push(OpenEdge {
                                 free: k,
+                                edge,
+                                face,
                                 patch,
                                 probe: p,
                                 length,
@@ -116,12 +118,13 @@ pub(super) fn grow<K: Kernel>(
                 }
             }
             Verdict::Extend(x) => {
-                open_edges.push(OpenEdge { free: k, patch, probe: p, length, nearest: x.distance, open: true });
+                let nearest = x.distance;
+                open_edges.push(OpenEdge { free: k, edge, face, patch, probe: p, length, nearest, open: true });
                 let mut ids = vec![patch + 1, x.partner + 1];
                 ids.sort_unstable();
                 Some((
                     patch,
-                    StripRequest { edge, face, lengths: x.lengths, onto_face: x.kind == joint::JointKind::T },
+                    StripRequest { edge, face, lengths: x.lengths, onto_face: x.kind == joint::JointKind::T, along: None },
                     (ids, x.kind.name(), "extended"),
                     p,
                 ))
@@ -129,23 +132,25 @@ pub(super) fn grow<K: Kernel>(
         };
         grows.push(grow);
     }
-    let (steps, step_corners, bridged) = step_quads(&open_edges, patches, solids, pass == Pass::Joints, fuzzy, tally);
+    let Steps { quads: steps, corners: step_corners, swept, bridged } =
+        step_quads(&open_edges, patches, solids, pass == Pass::Joints, fuzzy, tally);
     let planned: Vec<Planned> =
         grows.into_iter().enumerate().filter(|(k, _)| !bridged.contains(k)).filter_map(|(_, g)| g).collect();
-    if pass != Pass::Joints && planned.is_empty() && steps.is_empty() {
+    if pass != Pass::Joints && planned.is_empty() && steps.is_empty() && swept.is_empty() {
         return Ok(None);
     }
     // (patch, index among the faces of the extension's handle) of each made strip and corner.
     let mut strips: Vec<(usize, usize)> = Vec::new();
     let mut extended_handle = None;
-    if !planned.is_empty() || !steps.is_empty() {
+    if !planned.is_empty() || !steps.is_empty() || !swept.is_empty() {
         let mut corners = corners(&planned, fuzzy);
         corners.extend(step_corners);
         let extended: Extended = kernel.call(&Request::ExtendEdges {
             handle: fused.handle,
-            strips: planned.iter().map(|(_, s, _, _)| s.clone()).collect(),
+            strips: planned.iter().map(|(_, s, _, _)| s).chain(swept.iter().map(|(_, s, _, _)| s)).cloned().collect(),
             corners: corners.iter().map(|(_, c)| c).chain(steps.iter().map(|(_, c, _, _)| c)).cloned().collect(),
         })?;
+        let planned_count = planned.len();
         for ((patch, request, key, _), made) in planned.into_iter().zip(&extended.strips) {
             let length = fused.edges[request.edge].length;
             // A pass whose fuse fails takes its tally back (`run_pass`).
@@ -156,22 +161,29 @@ pub(super) fn grow<K: Kernel>(
                 tally.add((key.0, key.1, "kernel_failed"), length);
             }
         }
+        let mut bridges = |made: &[MadeStrip], bridges: Vec<(usize, JointKey, [f64; 2])>| {
+            let mut kept = Vec::new();
+            for ((patch, key, lengths), made) in bridges.into_iter().zip(made) {
+                let status = if made.area.is_some() { key.2 } else { "kernel_failed" };
+                for length in lengths {
+                    tally.add((key.0.clone(), key.1, status), length);
+                }
+                kept.extend(made.area.is_some().then_some(patch));
+            }
+            kept
+        };
+        let swept = swept.into_iter().map(|(patch, _, key, lengths)| (patch, key, lengths)).collect();
+        for patch in bridges(&extended.strips[planned_count..], swept) {
+            strips.push((patch, strips.len()));
+        }
         for (&(patch, _), made) in corners.iter().zip(&extended.corners) {
             if made.area.is_some() {
                 strips.push((patch, strips.len()));
             }
         }
-        for ((patch, _, key, lengths), made) in steps.into_iter().zip(&extended.corners[corners.len()..]) {
-            for length in lengths {
-                if made.area.is_some() {
-                    tally.add(key.clone(), length);
-                } else {
-                    tally.add((key.0.clone(), key.1, "kernel_failed"), length);
-                }
-            }
-            if made.area.is_some() {
-                strips.push((patch, strips.len()));
-            }
+        let steps = steps.into_iter().map(|(patch, _, key, lengths)| (patch, key, lengths)).collect();
+        for patch in bridges(&extended.corners[corners.len()..], steps) {
+            strips.push((patch, strips.len()));
         }
         extended_handle = Some(extended.handle);
     }
@@ -222,6 +234,9 @@ pub(super) fn grow<K: Kernel>(
 /// partner its rays found is (infinite for none), and whether it is open (else on the rim).
 struct OpenEdge<'a> {
     free: usize,
+    /// The edge and the face it bounds, in `fused`.
+    edge: usize,
+    face: usize,
     patch: usize,
     probe: &'a EdgeProbe,
     length: f64,
@@ -229,10 +244,23 @@ struct OpenEdge<'a> {
     open: bool,
 }
 
+/// What bridges the open edges of a pass across thickness steps and gaps (`step_quads`).
+struct Steps {
+    /// Quads and bands between lines and arcs, each owned by a patch.
+    quads: Vec<StepQuad>,
+    /// The quads filling the notches where two step bridges of one patch meet at a corner, by patch.
+    corners: Vec<(usize, CornerRequest)>,
+    /// Edges swept straight onto the other level of a step (`bridge::swept_steps`).
+    swept: Vec<SweptStrip>,
+    /// The free edges (indices) bridged.
+    bridged: BTreeSet<usize>,
+}
+
 /// The quads bridging open edges across thickness steps (`bridge::step_bridges`) and, with `gaps` (the first
 /// pass), across gaps in a tube's own surface (`bridge::ruling_gaps`), each owned by its `owner` edge's patch,
 /// with its joint key and the lengths of both edges; the quads filling the notches where two step bridges of
 /// one patch meet at a corner (`bridge::bridge_corners`, those whose middle lies in the material), by patch;
+/// the edges left swept onto the other level of a step whose two edges are one curve (`bridge::swept_steps`);
 /// and the free edges (indices) bridged. The edges that found no partner and no bridge are tallied as having no
 /// partner.
 fn step_quads(
@@ -242,7 +270,7 @@ fn step_quads(
     gaps: bool,
     fuzzy: f64,
     tally: &mut JointTally,
-) -> (Vec<StepQuad>, Vec<(usize, CornerRequest)>, BTreeSet<usize>) {
+) -> Steps {
     let edges: Vec<bridge::LooseEdge> = open
         .iter()
         .map(|e| {
@@ -259,6 +287,7 @@ fn step_quads(
                 points: p.points.clone(),
                 normal: p.normals[mid],
                 outward: p.outward[mid],
+                outwards: p.outward.clone(),
             }
         })
         .collect();
@@ -300,11 +329,22 @@ fn step_quads(
         let lengths = [open[owner].length, open[other].length];
         out.push((patch, request, (vec![patch + 1, patch + 1], joint::JointKind::Step.name(), "extended"), lengths));
     }
+    let mut swept = Vec::new();
+    for bridge::SweptStep { owner, other, along, run } in bridge::swept_steps(&edges, &bridged) {
+        (bridged[owner], bridged[other]) = (true, true);
+        let (e, patch) = (&open[owner], edges[owner].patch);
+        let mut ids = vec![patch + 1, edges[other].patch + 1];
+        ids.sort_unstable();
+        let lengths = vec![run; e.probe.points.len()];
+        let request = StripRequest { edge: e.edge, face: e.face, lengths, onto_face: false, along: Some(along) };
+        let key = (ids, joint::JointKind::Step.name(), "extended");
+        swept.push((patch, request, key, [e.length, open[other].length]));
+    }
     for (e, _) in open.iter().zip(&bridged).filter(|(e, &b)| !b && e.open && e.nearest.is_infinite()) {
         tally.add((vec![e.patch + 1], "none", "no_partner"), e.length);
     }
-    let free = open.iter().zip(&bridged).filter(|(_, &b)| b).map(|(e, _)| e.free).collect();
-    (out, step_corners, free)
+    let bridged = open.iter().zip(&bridged).filter(|(_, &b)| b).map(|(e, _)| e.free).collect();
+    Steps { quads: out, corners: step_corners, swept, bridged }
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
@@ -368,6 +408,9 @@ type Planned<'a> = (usize, StripRequest, JointKey, &'a EdgeProbe);
 
 /// A step bridge: the patch owning it, the quad, its joint key and the lengths of its two edges.
 type StepQuad = (usize, CornerRequest, JointKey, [f64; 2]);
+
+/// An edge swept onto the other level of a step: its patch, the request, the joint key and both edges' lengths.
+type SweptStrip = (usize, StripRequest, JointKey, [f64; 2]);
 
 /// Edges and length per joint key, in key order (deterministic).
 #[derive(Default, Clone)]

@@ -35,13 +35,32 @@ from ..protocol.errors import KernelError
 from .edge_probe import sample_edge
 
 
-def strip(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float], onto_face: bool = False) -> TopoDS_Face:
+def strip(
+    face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float], onto_face: bool = False, along: Vec | None = None
+) -> TopoDS_Face:
     """Oriented like the patch face (normals agree at the middle of the edge), so the faces of one patch can
     be merged and shells stay consistently oriented. `onto_face`: the edge grows onto the partner patch's own
-    face (a T-joint), which a strip on a cylinder may then keep to (`_axial_sweep`)."""
+    face (a T-joint), which a strip on a cylinder may then keep to (`_axial_sweep`). `along`: the edge swept
+    straight by this vector (an upright band across a thickness step, lengths all 0), oriented along the edge's
+    outward direction as an upright step quad is; or, with lengths, a ramp to the samples moved outward by them
+    and by `along`, oriented like the patch."""
     samples = sample_edge(face, edge, len(lengths))
+    middle = samples[len(samples) // 2]
+    if along is not None and max(lengths) <= 0.0:
+        made = _prism(edge, along)
+        if made is None:
+            raise KernelError("the edge could not be swept across the step")
+        return _oriented_like(made, middle.outward)
+    if along is not None:
+        # A ramp's far curve follows the edge's outline one run inside: sampled as finely as the edge's pcurves
+        # (the probe's few samples would smooth a wavy outline away), at the one run Rust gave every sample.
+        run = max(lengths)
+        fine = sample_edge(face, edge, max(len(lengths), PCURVE_SAMPLES))
+        far = [add_scaled(add_scaled(s.point, s.outward, run), along, 1.0) for s in fine]
+        tolerance = STRIP_RELATIVE_TOLERANCE * max(norm(sub(far[-1], far[0])), run, norm(along))
+        return _oriented_like(_ruled(edge, fine, far, tolerance), middle.normal)
     made = _strip(face, edge, samples, lengths, onto_face)
-    return _oriented_like(made, samples[len(samples) // 2].normal)
+    return _oriented_like(made, middle.normal)
 
 
 def _oriented_like(made: TopoDS_Face, normal: Vec) -> TopoDS_Face:
@@ -78,22 +97,30 @@ def _strip(face: TopoDS_Face, edge: TopoDS_Shape, samples: list, lengths: list[f
     near = TopoDS.Edge(edge.Oriented(TopAbs_FORWARD))
     near_curve = BRepAdaptor_Curve(near)
     tolerance = STRIP_RELATIVE_TOLERANCE * max(norm(sub(far[-1], far[0])), max(lengths))
-    if near_curve.GetType() == GeomAbs_Line and _collinear(far, tolerance):
-        plane = _plane_of(face)
-        if plane is not None and all(abs(plane.Distance(gp_Pnt(*p))) <= tolerance for p in far):
-            # On the patch's own plane: a plane face, so unify_same_domain can merge it into the patch.
-            return _planar_quad(plane, [samples[0].point, samples[-1].point, far[-1], far[0]])
-        far_curve = GC_MakeSegment(gp_Pnt(*far[0]), gp_Pnt(*far[-1])).Value()
-    else:
-        _refuse_fold(samples, far)
-        points = HArray1_gp_Pnt(1, len(far))
-        for k, p in enumerate(far):
-            points.SetValue(k + 1, gp_Pnt(*p))
-        interpolate = GeomAPI_Interpolate(points, False, tolerance)
-        interpolate.Perform()
-        if not interpolate.IsDone():
-            raise KernelError("the strip's far curve could not be interpolated")
-        far_curve = interpolate.Curve()
+    if near_curve.GetType() != GeomAbs_Line or not _collinear(far, tolerance):
+        return _ruled(edge, samples, far, tolerance)
+    plane = _plane_of(face)
+    if plane is not None and all(abs(plane.Distance(gp_Pnt(*p))) <= tolerance for p in far):
+        # On the patch's own plane: a plane face, so unify_same_domain can merge it into the patch.
+        return _planar_quad(plane, [samples[0].point, samples[-1].point, far[-1], far[0]])
+    return _ruled_to(near, GC_MakeSegment(gp_Pnt(*far[0]), gp_Pnt(*far[-1])).Value())
+
+
+def _ruled(edge: TopoDS_Shape, samples: list, far: list[Vec], tolerance: float) -> TopoDS_Face:
+    """The ruled face between the edge and the curve interpolated through `far` (one point per sample)."""
+    _refuse_fold(samples, far)
+    points = HArray1_gp_Pnt(1, len(far))
+    for k, p in enumerate(far):
+        points.SetValue(k + 1, gp_Pnt(*p))
+    interpolate = GeomAPI_Interpolate(points, False, tolerance)
+    interpolate.Perform()
+    if not interpolate.IsDone():
+        raise KernelError("the strip's far curve could not be interpolated")
+    return _ruled_to(TopoDS.Edge(edge.Oriented(TopAbs_FORWARD)), interpolate.Curve())
+
+
+def _ruled_to(near: TopoDS_Shape, far_curve) -> TopoDS_Face:
+    """The ruled face between the edge `near` (forward) and `far_curve`."""
     far_edge = BRepBuilderAPI_MakeEdge(far_curve).Edge()
     result = BRepFill.Face_s(near, far_edge)
     if result.IsNull() or not BRepCheck_Analyzer(result).IsValid():
