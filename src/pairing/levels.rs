@@ -99,7 +99,8 @@ mod tests {
         assert!(!one_plane(&a, &higher, LENGTH, angle()));
         let facing = rect(DVec3::new(20.0, 0.0, 2.0), DVec3::Y, DVec3::X, -DVec3::Z);
         assert!(!one_plane(&a, &facing, LENGTH, angle()), "material on the other side: another skin");
-        let cylinder = Face { surface: Surface::Cylinder { origin: DVec3::ZERO, axis: DVec3::Z, radius: 5.0, convex: true }, ..b };
+        let cylinder =
+            Face { surface: Surface::Cylinder { origin: DVec3::ZERO, axis: DVec3::Z, radius: 5.0, convex: true }, ..b };
         assert!(!one_plane(&a, &cylinder, LENGTH, angle()), "a curved skin is never a flat one");
     }
 }

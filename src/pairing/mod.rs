@@ -12,8 +12,8 @@ pub(crate) mod driver;
 pub(crate) mod estimate;
 pub(crate) mod features;
 pub(crate) mod groups;
-pub(crate) mod levels;
 pub(crate) mod isolation;
+pub(crate) mod levels;
 pub(crate) mod overlap;
 pub(crate) mod wall_class;
 

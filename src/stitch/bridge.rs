@@ -249,7 +249,11 @@ pub fn swept_steps(edges: &[LooseEdge], done: &[bool]) -> Vec<SweptStep> {
             let (ei, ej) = (&edges[i], &edges[j]);
             // Facing each other is told sample by sample (`one_curve`): along a curved outline the middles of a
             // short edge and of a long one lie apart.
-            if done[i] || done[j] || ei.patch == ej.patch || !may_bridge(ei, ej) || ei.normal.dot(ej.normal).abs() < parallel
+            if done[i]
+                || done[j]
+                || ei.patch == ej.patch
+                || !may_bridge(ei, ej)
+                || ei.normal.dot(ej.normal).abs() < parallel
             {
                 continue;
             }
@@ -260,7 +264,12 @@ pub fn swept_steps(edges: &[LooseEdge], done: &[bool]) -> Vec<SweptStep> {
             let step = match (one_curve(et, ek, tolerance, reach), one_curve(ek, et, tolerance, reach)) {
                 (Some(along), Some(_)) => {
                     let ramp = along.length() > STEP_LEVEL_SHARE * et.thickness && polyline_length(&et.points) >= reach;
-                    SweptStep { owner: thin, other: thick, along, run: if ramp { RAMP_RUN * et.thickness } else { 0.0 } }
+                    SweptStep {
+                        owner: thin,
+                        other: thick,
+                        along,
+                        run: if ramp { RAMP_RUN * et.thickness } else { 0.0 },
+                    }
                 }
                 (Some(along), None) => SweptStep { owner: thin, other: thick, along, run: 0.0 },
                 (None, Some(along)) => SweptStep { owner: thick, other: thin, along, run: 0.0 },

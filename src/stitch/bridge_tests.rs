@@ -263,7 +263,11 @@ fn wavy(patch: usize, thickness: f64, z: f64, (x0, x1): (f64, f64), side: f64) -
             DVec3::Z.cross(tangent) * side
         })
         .collect();
-    LooseEdge { outwards: outwards.clone(), outward: outwards[20], ..open_edge(patch, thickness, points, DVec3::Z, outwards[20]) }
+    LooseEdge {
+        outwards: outwards.clone(),
+        outward: outwards[20],
+        ..open_edge(patch, thickness, points, DVec3::Z, outwards[20])
+    }
 }
 
 #[test]

@@ -124,7 +124,13 @@ pub(super) fn grow<K: Kernel>(
                 ids.sort_unstable();
                 Some((
                     patch,
-                    StripRequest { edge, face, lengths: x.lengths, onto_face: x.kind == joint::JointKind::T, along: None },
+                    StripRequest {
+                        edge,
+                        face,
+                        lengths: x.lengths,
+                        onto_face: x.kind == joint::JointKind::T,
+                        along: None,
+                    },
                     (ids, x.kind.name(), "extended"),
                     p,
                 ))
