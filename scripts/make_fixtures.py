@@ -381,6 +381,19 @@ def plate_pocket_split_skin() -> Fixture:
     return Fixture(single_solid(part), 12000 - 200, 12)
 
 
+def plate_pocket_engraved() -> Fixture:
+    """flat_plate with a pocket 1 deep in its underside (10 x 20 at (20, 20)) and, over it, an engraving 0.2 deep
+    in its top (a moulded cover's logo, marked on both sides): the pocket's wall is 0.8 thick (z 1..1.8), its
+    own wall, sharing no skin with the plate. The pocket is half the plate deep, so the plate's mid-surface
+    (z = 1) runs exactly along the pocket's floor: past its edges there the plate goes on as the thinner level,
+    though the point tested lies on a face. The two mid-surfaces (z = 1 and 1.4) must meet through ramps.
+    Faces: 16 (the plate's 6; the pocket's floor and 4 walls; the engraving's floor and 4 walls).
+    Volume: 12000 - 10 * 20 * 1 - 10 * 20 * 0.2.
+    """
+    part = box(0, 0, 0, 100, 60, 2) - box(20, 20, 0, 10, 20, 1) - box(20, 20, 1.8, 10, 20, 0.2)
+    return Fixture(single_solid(part), 12000 - 200 - 40, 16)
+
+
 def plate_pocket_spline() -> Fixture:
     """flat_plate with a pocket 1 deep in its underside whose outline is a closed B-spline (a five-lobed blob
     about (50, 30), radius 10 + 2 sin(5 a), through 40 points): the class of a moulded recess, logo or cut-out
@@ -1010,6 +1023,7 @@ PARTS: list[Callable[[], Fixture]] = [
     plate_pockets,
     plate_pocket_split_skin,
     plate_pocket_spline,
+    plate_pocket_engraved,
     pipe_tee,
     cover_pin,
     plate_hairline_groove,

@@ -105,6 +105,16 @@ impl SolidMesh {
             .min_by(f64::total_cmp)
     }
 
+    /// Whether a triangle square to the unit `normal` (its own normal within `cos` of it, either way) lies within
+    /// `within` of `p` along it: `p` lies on a face parallel to a patch of that normal.
+    pub fn on_face_across(&self, p: DVec3, normal: DVec3, within: f64, cos: f64) -> bool {
+        let square = |t: &[DVec3; 3]| {
+            let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+            n.dot(normal).abs() >= cos
+        };
+        self.nearest_where(p - normal * within, normal, 2.0 * within, square).is_some()
+    }
+
     /// Distances along `dir` (unit) from `p` to every triangle the ray meets within `reach`, sorted, hits
     /// closer than `merge` to the previous one dropped (a ray through an edge two triangles share meets both).
     pub fn crossings_along(&self, p: DVec3, dir: DVec3, reach: f64, merge: f64) -> Vec<f64> {
@@ -200,6 +210,17 @@ mod tests {
         assert!(!solid.contains(DVec3::new(5.0, 2.0, 2.5)));
         assert!(!solid.contains(DVec3::new(-0.1, 2.0, 1.0)));
         assert!(!solid.contains(DVec3::new(50.0, 2.0, 1.0)));
+    }
+
+    #[test]
+    fn a_point_on_a_face_square_to_the_normal_is_told_from_one_on_a_face_along_it() {
+        let solid = SolidMesh::new(&cuboid(DVec3::ZERO, DVec3::new(10.0, 4.0, 2.0))).unwrap();
+        let on_top = DVec3::new(5.0, 2.0, 2.0);
+        assert!(solid.on_face_across(on_top, DVec3::Z, 1e-3, 0.999));
+        assert!(solid.on_face_across(on_top + DVec3::Z * 5e-4, -DVec3::Z, 1e-3, 0.999));
+        assert!(!solid.on_face_across(on_top + DVec3::Z * 5e-3, DVec3::Z, 1e-3, 0.999), "farther than `within`");
+        assert!(!solid.on_face_across(on_top, DVec3::X, 1e-3, 0.999), "the top is along x, not across it");
+        assert!(!solid.on_face_across(DVec3::new(5.0, 2.0, 1.0), DVec3::Z, 1e-3, 0.999));
     }
 
     #[test]

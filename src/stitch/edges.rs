@@ -5,13 +5,21 @@ use std::collections::BTreeSet;
 
 use super::{joint, FreeEdges, PatchInfo};
 use crate::geom::inside::SolidMesh;
+use glam::DVec3;
 use crate::model::shapes::{EdgeProbe, Fused, FusedEdge};
 
-/// Whether the free edge of `face` lies in the material of its patch's solid.
+/// Whether the free edge of `face` lies in the material of its patch's solid (`joint::is_open`); a point tested on
+/// a face parallel to the patch counts as in it (`joint::LEVEL_FACE_SHARE`).
 pub(super) fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], solids: &[SolidMesh]) -> bool {
     let patch = &patches[fused.faces[face].patch];
-    joint::is_open(probe, joint::PROBE_STEP * patch.thickness, patch.to_mid, |q| solids[patch.solid].contains(q))
+    let (solid, step) = (&solids[patch.solid], joint::PROBE_STEP * patch.thickness);
+    let within = joint::LEVEL_FACE_SHARE * step;
+    let inside = |q: DVec3, n: DVec3| solid.contains(q) || solid.on_face_across(q, n, within, LEVEL_FACE_COS);
+    joint::is_open(probe, step, patch.to_mid, inside)
 }
+
+/// A face is parallel to a patch when their normals are within about 2.6 degrees (cosine 0.999).
+const LEVEL_FACE_COS: f64 = 0.999;
 
 /// How far the free edge `edge` of `face` must grow to reach the part's boundary, if it stops short of it (see
 /// `joint::rim_shortfall`): straight and curved edges alike (a tube cut obliquely falls short on one side) when

@@ -80,11 +80,18 @@ pub enum Verdict {
 
 /// Whether most of the points `step` past the edge's samples lie in the material: an open joint, not the rim.
 /// The points are first moved `to_mid` along the patch normal to the middle of the wall (a patch on a skin).
-pub fn is_open(probe: &EdgeProbe, step: f64, to_mid: f64, contains: impl Fn(DVec3) -> bool) -> bool {
+/// `inside(q, n)` tells whether point q, tested past a sample whose patch normal is n, is in the material.
+pub fn is_open(probe: &EdgeProbe, step: f64, to_mid: f64, inside: impl Fn(DVec3, DVec3) -> bool) -> bool {
     let beyond = |k: usize| probe.points[k] + probe.outward[k] * step + probe.normals[k] * to_mid;
-    let inside = (0..probe.points.len()).filter(|&k| contains(beyond(k))).count();
-    2 * inside > probe.points.len()
+    let count = (0..probe.points.len()).filter(|&k| inside(beyond(k), probe.normals[k])).count();
+    2 * count > probe.points.len()
 }
+
+/// Within this share of the step past an edge, a face parallel to the patch through the point tested makes it
+/// in the material (`edges::open`): past the edge of a wall whose middle runs exactly along a face (the floor of
+/// a recess half the wall deep: a thinner level of the wall), the point lies on that face, where an inside test
+/// is a toss-up, and the wall goes on. A face across the patch there (the rim's) does not count.
+pub const LEVEL_FACE_SHARE: f64 = 0.01;
 
 /// Decides one free edge of patch `patch` (`open`: see [`is_open`]). `patch_of[f]` is the patch of fused face f,
 /// `thickness[p]` of patch p. `through(k, d)` says whether the way out from sample k stays in the material for

@@ -20,9 +20,9 @@ fn an_edge_whose_outside_is_outside_the_solid_is_rim() {
     p.points = vec![DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0), DVec3::new(2.0, 0.0, 0.0)];
     // Material only below z = -0.5 at x >= 1.5: one sample of three.
     let contains = |q: DVec3| q.z < -0.4 && q.x >= 1.5;
-    assert!(!is_open(&p, 0.5, 0.0, contains));
+    assert!(!is_open(&p, 0.5, 0.0, |q, _| contains(q)));
     assert_eq!(decide(1, false, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true), Verdict::Rim);
-    assert!(is_open(&p, 0.5, 0.0, |q: DVec3| q.z < -0.4 && q.x >= 0.5));
+    assert!(is_open(&p, 0.5, 0.0, |q: DVec3, _| q.z < -0.4 && q.x >= 0.5));
 }
 
 #[test]
@@ -32,10 +32,10 @@ fn an_edge_on_a_skin_is_tested_at_the_middle_of_its_wall() {
     p.points = (0..3).map(|k| DVec3::new(4.0, k as f64, 0.0)).collect();
     p.normals = vec![DVec3::Z; 3];
     p.outward = vec![DVec3::X; 3];
-    let plate = |q: DVec3| q.z < 0.0 && q.z > -2.0 && q.x < 5.0;
+    let plate = |q: DVec3, _| q.z < 0.0 && q.z > -2.0 && q.x < 5.0;
     assert!(!is_open(&p, 0.5, 0.0, plate), "on the skin the test point is on the boundary");
     assert!(is_open(&p, 0.5, -1.0, plate));
-    let short = |q: DVec3| plate(q) && q.x < 4.2;
+    let short = |q: DVec3, n| plate(q, n) && q.x < 4.2;
     assert!(!is_open(&p, 0.5, -1.0, short), "the rim stays the rim");
 }
 
