@@ -284,15 +284,21 @@ pub fn swept_steps(edges: &[LooseEdge], done: &[bool]) -> Vec<SweptStep> {
         let key = |b: &SweptStep| (b.owner.min(b.other), b.owner.max(b.other));
         x.0.total_cmp(&y.0).then(key(&x.1).cmp(&key(&y.1)))
     });
-    let mut used = done.to_vec();
+    each_edge_once(candidates, done.to_vec(), |b| (b.owner, b.other))
+}
+
+/// The bridges of `candidates` (in their order), each taken only while neither of its two edges (`ends`) is
+/// `used`; sorted by their edges.
+fn each_edge_once<T>(candidates: Vec<(f64, T)>, mut used: Vec<bool>, ends: impl Fn(&T) -> (usize, usize)) -> Vec<T> {
     let mut out = Vec::new();
-    for (_, step) in candidates {
-        if !used[step.owner] && !used[step.other] {
-            (used[step.owner], used[step.other]) = (true, true);
-            out.push(step);
+    for (_, bridge) in candidates {
+        let (a, b) = ends(&bridge);
+        if !used[a] && !used[b] {
+            (used[a], used[b]) = (true, true);
+            out.push(bridge);
         }
     }
-    out.sort_by_key(|b| (b.owner, b.other));
+    out.sort_by_key(|b| ends(b));
     out
 }
 
@@ -546,16 +552,7 @@ pub fn ruling_gaps(edges: &[LooseEdge]) -> Vec<StepBridge> {
         let quad = [on_a(s0), on_a(s1), on_a(s1) + d, on_a(s0) + d];
         Some((gap, StepBridge { owner: i, other: j, quad, normal: ei.normal, axis: Some([center, direction]) }))
     });
-    let mut used = vec![false; edges.len()];
-    let mut out = Vec::new();
-    for (_, bridge) in candidates {
-        if !used[bridge.owner] && !used[bridge.other] {
-            (used[bridge.owner], used[bridge.other]) = (true, true);
-            out.push(bridge);
-        }
-    }
-    out.sort_by_key(|b| (b.owner, b.other));
-    out
+    each_edge_once(candidates, vec![false; edges.len()], |b| (b.owner, b.other))
 }
 
 /// The edges' courses, and the bridges `find` makes for each pair of edges i < j (given the courses and the

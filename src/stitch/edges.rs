@@ -5,8 +5,8 @@ use std::collections::BTreeSet;
 
 use super::{joint, FreeEdges, PatchInfo};
 use crate::geom::inside::SolidMesh;
-use glam::DVec3;
 use crate::model::shapes::{EdgeProbe, Fused, FusedEdge};
+use glam::DVec3;
 
 /// Whether the free edge of `face` lies in the material of its patch's solid (`joint::is_open`); a point tested on
 /// a face parallel to the patch counts as in it (`joint::LEVEL_FACE_SHARE`).
