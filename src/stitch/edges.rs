@@ -8,9 +8,24 @@ use crate::geom::inside::SolidMesh;
 use crate::model::shapes::{EdgeProbe, Fused, FusedEdge};
 use glam::DVec3;
 
-/// Whether the free edge of `face` lies in the material of its patch's solid (`joint::is_open`); a point tested on
-/// a face parallel to the patch counts as in it (`joint::LEVEL_FACE_SHARE`).
+/// Whether the free edge of `face` lies in the material of its patch's solid (`joint::is_open`).
 pub(super) fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], solids: &[SolidMesh]) -> bool {
+    let patch = &patches[fused.faces[face].patch];
+    let solid = &solids[patch.solid];
+    joint::is_open(probe, joint::PROBE_STEP * patch.thickness, patch.to_mid, |q, _| solid.contains(q))
+}
+
+/// Whether the free edge of `face` is open once a point tested on a face parallel to the patch counts as in the
+/// material (`joint::LEVEL_FACE_SHARE`): the edge of a wall's level whose middle runs along a thinner level's
+/// floor. Only the step search takes such an edge as open; where it bridges nothing the edge is the rim, as the
+/// boundary runs through it (a counterbore half the wall deep round a hole), and is reported so.
+pub(super) fn open_on_level(
+    fused: &Fused,
+    face: usize,
+    probe: &EdgeProbe,
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+) -> bool {
     let patch = &patches[fused.faces[face].patch];
     let (solid, step) = (&solids[patch.solid], joint::PROBE_STEP * patch.thickness);
     let within = joint::LEVEL_FACE_SHARE * step;

@@ -5,7 +5,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::bridge;
-use super::edges::{open, straight, to_rim};
+use super::edges::{open, open_on_level, straight, to_rim};
 use super::joint::{self, Verdict};
 use super::{kept_faces, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
@@ -102,6 +102,7 @@ pub(super) fn grow<K: Kernel>(
                         // boundary past it, so its outside reads as out of the material.
                         let open = verdict == Verdict::Unresolved;
                         if pass == Pass::Joints {
+                            let level = !open && open_on_level(fused, face, p, patches, solids);
                             open_edges.push(OpenEdge {
                                 free: k,
                                 edge,
@@ -111,6 +112,7 @@ pub(super) fn grow<K: Kernel>(
                                 length,
                                 nearest: f64::INFINITY,
                                 open,
+                                level,
                             });
                         }
                         None
@@ -119,7 +121,8 @@ pub(super) fn grow<K: Kernel>(
             }
             Verdict::Extend(x) => {
                 let nearest = x.distance;
-                open_edges.push(OpenEdge { free: k, edge, face, patch, probe: p, length, nearest, open: true });
+                let level = false;
+                open_edges.push(OpenEdge { free: k, edge, face, patch, probe: p, length, nearest, open: true, level });
                 let mut ids = vec![patch + 1, x.partner + 1];
                 ids.sort_unstable();
                 Some((
@@ -248,6 +251,9 @@ struct OpenEdge<'a> {
     length: f64,
     nearest: f64,
     open: bool,
+    /// Not open, but open once a point on a face parallel to the patch counts as in the material
+    /// (`edges::open_on_level`): the step search takes it as open.
+    level: bool,
 }
 
 /// What bridges the open edges of a pass across thickness steps and gaps (`step_quads`).
@@ -289,7 +295,7 @@ fn step_quads(
                 nearest: e.nearest,
                 reach: patches[e.patch].reach,
                 freeform: patches[e.patch].freeform,
-                open: e.open,
+                open: e.open || e.level,
                 points: p.points.clone(),
                 normal: p.normals[mid],
                 outward: p.outward[mid],
