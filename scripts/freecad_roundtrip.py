@@ -24,8 +24,11 @@ import Part
 # Relative tolerance on the total area: STEP stores geometry to full precision, so only rounding in the report
 # (0.01 mm²), the reader's tolerance fixes and OCCT's area integration move it. The integration is the loosest:
 # on a rational B-spline face running into a pole (a dome's mid-patch, 28.999 mm radius, exact area 3461.82 mm²)
-# it gives 3462.46 in memory and 3462.01 on the faces read back (1.3e-4 apart).
-AREA_TOLERANCE = 3e-4
+# it gives 3462.46 in memory and 3462.01 on the faces read back (1.3e-4 apart); on a plane face whose hole is
+# bounded by a curve the fuse cut it along (where a ramp following a spline outline meets it: fixture
+# plate_pocket_spline), 5637.7 in memory and 5640.6 read back, 4.9e-4 of the part's 6016 mm². A face lost or
+# broken moves the area by far more.
+AREA_TOLERANCE = 1e-3
 
 
 def counts(shape):
