@@ -41,7 +41,7 @@ pub struct PatchInfo {
     /// outside the material (the filling across the branch's bore, the branch's strip past the main) are trimmed.
     pub junction: bool,
     /// The wall the patch was made from (solid, lowest pair group of the wall): the levels of a thickness step
-    /// share it, whether they pair as one group or as groups whose skins on one side run on into each other
+    /// share it, whether they pair as one group or as groups whose flat skins on one side run on into each other
     /// (`pairing::levels`).
     pub wall: (usize, usize),
     /// A freeform patch (offset of a B-spline): its curved free edges do not grow to the rim (`edges::to_rim`).
