@@ -22,11 +22,17 @@ pub struct LooseEdge {
     pub open: bool,
     /// Samples along the edge, ends included.
     pub points: Vec<DVec3>,
-    /// The patch normal and the outward direction (in the patch, away from it) at the edge's middle sample.
+    /// The patch normal at the edge's middle sample.
     pub normal: DVec3,
-    pub outward: DVec3,
-    /// The outward direction at each sample.
+    /// The outward direction (in the patch, away from it) at each sample.
     pub outwards: Vec<DVec3>,
+}
+
+impl LooseEdge {
+    /// The outward direction at the edge's middle sample.
+    pub fn outward(&self) -> DVec3 {
+        self.outwards[self.outwards.len() / 2]
+    }
 }
 
 /// Within this angle two directions are parallel for the step search (degrees).
@@ -182,7 +188,7 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
         if ei.patch == ej.patch
             || !may_bridge(ei, ej)
             || ei.normal.dot(ej.normal).abs() < parallel
-            || ei.outward.dot(ej.outward) > -parallel
+            || ei.outward().dot(ej.outward()) > -parallel
         {
             return None;
         }
@@ -415,14 +421,14 @@ fn line_bridge(
     if !bridgeable(et, ek, gap) {
         return None;
     }
-    let (level, across) = (offset.dot(et.normal).abs(), offset.dot(et.outward));
+    let (level, across) = (offset.dot(et.normal).abs(), offset.dot(et.outward()));
     if level > reach || across.abs() > reach {
         return None;
     }
     let (s0, s1) = shared_stretch((a, u, la), (b, v, lb))?;
     let ramp = laid_down(et, s1 - s0 >= STEP_SPAN_SHARE * lb && s1 - s0 >= reach, level, across);
     let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
-    let far = offset - ek.outward * run;
+    let far = offset - ek.outward() * run;
     let on_a = |s: f64| a + u * s;
     let quad = [on_a(s0), on_a(s0) + far, on_a(s1) + far, on_a(s1)];
     Some((gap, owned(edges, thin, thick, first, ramp, quad, None)))
@@ -481,14 +487,14 @@ fn arc_bridge(
     if !bridgeable(et, ek, gap) {
         return None;
     }
-    let (normal, outward) = (turned(et.normal, mid_a, middle), turned(et.outward, mid_a, middle));
+    let (normal, outward) = (turned(et.normal, mid_a, middle), turned(et.outward(), mid_a, middle));
     let (level, across) = (offset.dot(normal).abs(), offset.dot(outward));
     if level > reach || across.abs() > reach {
         return None;
     }
     let ramp = laid_down(et, s1 - s0 >= STEP_SPAN_SHARE * sb && (s1 - s0) * ra.min(rb) >= reach, level, across);
     let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
-    let far = |s: f64| on_b(s) - turned(ek.outward, mid_b, s) * run;
+    let far = |s: f64| on_b(s) - turned(ek.outward(), mid_b, s) * run;
     let quad = [on_a(s0), far(s0), far(s1), on_a(s1)];
     Some((gap, owned(edges, thin, thick, first, ramp, quad, Some([ca, axis]))))
 }
@@ -537,7 +543,7 @@ pub fn ruling_gaps(edges: &[LooseEdge]) -> Vec<StepBridge> {
         if (d - turn * r).length() > COAXIAL_SHARE * r.abs() {
             return None;
         }
-        if ei.outward.dot(d) <= 0.0 || ej.outward.dot(d) >= 0.0 {
+        if ei.outward().dot(d) <= 0.0 || ej.outward().dot(d) >= 0.0 {
             return None;
         }
         let center = a - na * r;
@@ -616,10 +622,10 @@ fn owned(
 ) -> StepBridge {
     let (et, ek) = (&edges[thin], &edges[thick]);
     if ramp || thin == first {
-        StepBridge { owner: thin, other: thick, quad, normal: if ramp { et.normal } else { et.outward }, axis }
+        StepBridge { owner: thin, other: thick, quad, normal: if ramp { et.normal } else { et.outward() }, axis }
     } else {
         // A flat or upright bridge joins the first edge's patch: the same quad seen from the other side.
-        StepBridge { owner: thick, other: thin, quad: [quad[1], quad[0], quad[3], quad[2]], normal: ek.outward, axis }
+        StepBridge { owner: thick, other: thin, quad: [quad[1], quad[0], quad[3], quad[2]], normal: ek.outward(), axis }
     }
 }
 

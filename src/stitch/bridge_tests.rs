@@ -20,7 +20,6 @@ fn open_edge(patch: usize, thickness: f64, points: Vec<DVec3>, normal: DVec3, ou
         outwards: vec![outward; points.len()],
         points,
         normal,
-        outward,
     }
 }
 
@@ -263,11 +262,7 @@ fn wavy(patch: usize, thickness: f64, z: f64, (x0, x1): (f64, f64), side: f64) -
             DVec3::Z.cross(tangent) * side
         })
         .collect();
-    LooseEdge {
-        outwards: outwards.clone(),
-        outward: outwards[20],
-        ..open_edge(patch, thickness, points, DVec3::Z, outwards[20])
-    }
+    LooseEdge { outwards: outwards.clone(), ..open_edge(patch, thickness, points, DVec3::Z, outwards[20]) }
 }
 
 #[test]

@@ -10,9 +10,7 @@ use glam::DVec3;
 
 /// Whether the free edge of `face` lies in the material of its patch's solid (`joint::is_open`).
 pub(super) fn open(fused: &Fused, face: usize, probe: &EdgeProbe, patches: &[PatchInfo], solids: &[SolidMesh]) -> bool {
-    let patch = &patches[fused.faces[face].patch];
-    let solid = &solids[patch.solid];
-    joint::is_open(probe, joint::PROBE_STEP * patch.thickness, patch.to_mid, |q, _| solid.contains(q))
+    outside_in_material(fused, face, probe, patches, solids, false)
 }
 
 /// Whether the free edge of `face` is open once a point tested on a face parallel to the patch counts as in the
@@ -26,15 +24,24 @@ pub(super) fn open_on_level(
     patches: &[PatchInfo],
     solids: &[SolidMesh],
 ) -> bool {
+    outside_in_material(fused, face, probe, patches, solids, true)
+}
+
+/// `joint::is_open` on the patch's solid; with `levels`, a point on a face parallel to the patch counts as in it.
+fn outside_in_material(
+    fused: &Fused,
+    face: usize,
+    probe: &EdgeProbe,
+    patches: &[PatchInfo],
+    solids: &[SolidMesh],
+    levels: bool,
+) -> bool {
     let patch = &patches[fused.faces[face].patch];
     let (solid, step) = (&solids[patch.solid], joint::PROBE_STEP * patch.thickness);
     let within = joint::LEVEL_FACE_SHARE * step;
-    let inside = |q: DVec3, n: DVec3| solid.contains(q) || solid.on_face_across(q, n, within, LEVEL_FACE_COS);
-    joint::is_open(probe, step, patch.to_mid, inside)
+    let on_level = |q: DVec3, n: DVec3| levels && solid.on_face_across(q, n, within, joint::LEVEL_FACE_COS);
+    joint::is_open(probe, step, patch.to_mid, |q, n| solid.contains(q) || on_level(q, n))
 }
-
-/// A face is parallel to a patch when their normals are within about 2.6 degrees (cosine 0.999).
-const LEVEL_FACE_COS: f64 = 0.999;
 
 /// How far the free edge `edge` of `face` must grow to reach the part's boundary, if it stops short of it (see
 /// `joint::rim_shortfall`): straight and curved edges alike (a tube cut obliquely falls short on one side) when

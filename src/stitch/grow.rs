@@ -298,7 +298,6 @@ fn step_quads(
                 open: e.open || e.level,
                 points: p.points.clone(),
                 normal: p.normals[mid],
-                outward: p.outward[mid],
                 outwards: p.outward.clone(),
             }
         })

@@ -44,23 +44,28 @@ def strip(
     straight by this vector (an upright band across a thickness step, lengths all 0), oriented along the edge's
     outward direction as an upright step quad is; or, with lengths, a ramp to the samples moved outward by them
     and by `along`, oriented like the patch."""
+    if along is not None:
+        return _step(face, edge, lengths, along)
     samples = sample_edge(face, edge, len(lengths))
-    middle = samples[len(samples) // 2]
-    if along is not None and max(lengths) <= 0.0:
+    made = _strip(face, edge, samples, lengths, onto_face)
+    return _oriented_like(made, samples[len(samples) // 2].normal)
+
+
+def _step(face: TopoDS_Face, edge: TopoDS_Shape, lengths: list[float], along: Vec) -> TopoDS_Face:
+    """The bridge of a step swept `along` (see `strip`): upright when the lengths are 0, else a ramp whose far
+    curve follows the edge's outline one run inside, sampled as finely as the edge's pcurves (the probe's few
+    samples would smooth a wavy outline away) at the one run Rust gave every sample."""
+    run = max(lengths)
+    if run <= 0.0:
         made = _prism(edge, along)
         if made is None:
             raise KernelError("the edge could not be swept across the step")
-        return _oriented_like(made, middle.outward)
-    if along is not None:
-        # A ramp's far curve follows the edge's outline one run inside: sampled as finely as the edge's pcurves
-        # (the probe's few samples would smooth a wavy outline away), at the one run Rust gave every sample.
-        run = max(lengths)
-        fine = sample_edge(face, edge, max(len(lengths), PCURVE_SAMPLES))
-        far = [add_scaled(add_scaled(s.point, s.outward, run), along, 1.0) for s in fine]
-        tolerance = STRIP_RELATIVE_TOLERANCE * max(norm(sub(far[-1], far[0])), run, norm(along))
-        return _oriented_like(_ruled(edge, fine, far, tolerance), middle.normal)
-    made = _strip(face, edge, samples, lengths, onto_face)
-    return _oriented_like(made, middle.normal)
+        samples = sample_edge(face, edge, len(lengths))
+        return _oriented_like(made, samples[len(samples) // 2].outward)
+    fine = sample_edge(face, edge, max(len(lengths), PCURVE_SAMPLES))
+    far = [add_scaled(add_scaled(s.point, s.outward, run), along, 1.0) for s in fine]
+    tolerance = STRIP_RELATIVE_TOLERANCE * max(norm(sub(far[-1], far[0])), run, norm(along))
+    return _oriented_like(_ruled(edge, fine, far, tolerance), fine[len(fine) // 2].normal)
 
 
 def _oriented_like(made: TopoDS_Face, normal: Vec) -> TopoDS_Face:
