@@ -21,6 +21,8 @@ COMPONENT = {5121: np.uint8, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}
 WIDTH = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
 # Drawn at this multiple of the output size, then downsampled: cheap anti-aliasing.
 SUPERSAMPLE = 3
+# glTF primitive mode of a triangle list (the default when absent).
+TRIANGLES = 4
 
 
 def read_glb(path: str) -> list[tuple[np.ndarray, np.ndarray, tuple[float, float, float]]]:
@@ -47,6 +49,8 @@ def read_glb(path: str) -> list[tuple[np.ndarray, np.ndarray, tuple[float, float
             continue
         matrix = np.array(node.get("matrix", np.eye(4).flatten(order="F")), float).reshape(4, 4, order="F")
         for primitive in gltf["meshes"][node["mesh"]]["primitives"]:
+            if primitive.get("mode", TRIANGLES) != TRIANGLES:
+                continue  # OCCT writes a shape's free vertices as a point primitive: nothing to shade
             points = accessor(primitive["attributes"]["POSITION"]).astype(float)
             points = points @ matrix[:3, :3].T + matrix[:3, 3]
             triangles = accessor(primitive["indices"]).reshape(-1, 3)
