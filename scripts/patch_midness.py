@@ -2,7 +2,8 @@
 
 Run with the judge's Python (it imports ../shared/eval/midsurf_eval.py):
   ~/.cache/midsurf-judge/venv/bin/python scripts/patch_midness.py IN.step OUT.step
-Prints the share of patches whose median measured thickness is within 2% of the reported one, over all their
+Prints the judge's volume ratio split into the excess of faces measuring over 1.5 x their named thickness and the
+rest, the share of patches whose median measured thickness is within 2% of the reported one, over all their
 samples and again away from joints (without the samples within one thickness of a crossing patch, where the
 judge's rays run along the other wall); then, worst first: output face index, its name (patch id, thickness),
 area, median |d_up-d_down|/t, median measured thickness.
@@ -98,6 +99,26 @@ def print_agreement(title, named_t, area_of, sample_patch, usable, thickness):
         print(f"  miss {patch:<10} area {a:9.2f}  reported {named:.3f}  measured median {measured:.3f}")
 
 
+def print_volume_split(solid, names, area, sample_face, ok, thickness):
+    """The judge's volume ratio (each face's area times its median measured thickness, over the thin-walled
+    solids' volume), split into the excess of faces measuring over 1.5 x their named thickness (they lie along
+    another wall or over thicker material: what pushes the ratio over 1 on most parts) and the rest."""
+    solids = ev.solids_of(solid)
+    thin = [s for s in solids if not ev.is_chunky(s)]
+    volume = sum(abs(ev.volume(s)) for s in thin) if len(thin) < len(solids) else ev.volume(solid)
+    overall = float(np.median(thickness[ok])) if ok.any() else float("nan")
+    total = excess = 0.0
+    for f, a in enumerate(area):
+        m = (sample_face == f) & ok
+        measured = float(np.median(thickness[m])) if m.sum() >= 3 else overall
+        total += a * measured
+        name = names.get(f, "")
+        if " t=" in name and measured > 1.5 * float(name.split(" t=")[1]):
+            excess += a * (measured - float(name.split(" t=")[1]))
+    print(f"volume ratio {total / volume:.3f}: {excess / volume:+.3f} from faces measuring over 1.5 x their named "
+          f"thickness, {(total - excess) / volume:.3f} from the rest")
+
+
 def main(inp, out):
     solid, mid = ev.read_step(inp), ev.read_step(out)
     d = ev.diag(solid)
@@ -136,6 +157,7 @@ def main(inp, out):
             agree += a if abs(t - named) <= 0.02 * named else 0.0
     share = agree / total * 100 if total else 0
     print(f"faces: thickness within 2% of the measured median: {share:.1f}% of the named area")
+    print_volume_split(solid, names, area, fo[tidx], ok, up + dn)
     # The same per patch (all samples of a patch's faces): what the report's thickness per patch claims.
     patch_of = {f: name.split(" t=")[0] for f, name in names.items() if " t=" in name}
     named_t = {name.split(" t=")[0]: float(name.split(" t=")[1]) for name in names.values() if " t=" in name}
