@@ -99,6 +99,11 @@ def print_agreement(title, named_t, area_of, sample_patch, usable, thickness):
         print(f"  miss {patch:<10} area {a:9.2f}  reported {named:.3f}  measured median {measured:.3f}")
 
 
+def named_thickness(name):
+    """The thickness a face's name carries ("patch 3 t=2.000" -> 2.0), None without one."""
+    return float(name.split(" t=")[1]) if " t=" in name else None
+
+
 def print_volume_split(solid, names, area, sample_face, ok, thickness):
     """The judge's volume ratio (each face's area times its median measured thickness, over the thin-walled
     solids' volume), split into the excess of faces measuring over 1.5 x their named thickness (they lie along
@@ -112,9 +117,9 @@ def print_volume_split(solid, names, area, sample_face, ok, thickness):
         m = (sample_face == f) & ok
         measured = float(np.median(thickness[m])) if m.sum() >= 3 else overall
         total += a * measured
-        name = names.get(f, "")
-        if " t=" in name and measured > 1.5 * float(name.split(" t=")[1]):
-            excess += a * (measured - float(name.split(" t=")[1]))
+        named = named_thickness(names.get(f, ""))
+        if named is not None and measured > 1.5 * named:
+            excess += a * (measured - named)
     print(f"volume ratio {total / volume:.3f}: {excess / volume:+.3f} from faces measuring over 1.5 x their named "
           f"thickness, {(total - excess) / volume:.3f} from the rest")
 
@@ -151,8 +156,8 @@ def main(inp, out):
     # Share of the output area whose named thickness agrees with the measured one within 2%.
     agree = total = 0.0
     for _, f, name, a, t in rows:
-        if " t=" in name:
-            named = float(name.split(" t=")[1])
+        named = named_thickness(name)
+        if named is not None:
             total += a
             agree += a if abs(t - named) <= 0.02 * named else 0.0
     share = agree / total * 100 if total else 0
@@ -160,7 +165,7 @@ def main(inp, out):
     print_volume_split(solid, names, area, fo[tidx], ok, up + dn)
     # The same per patch (all samples of a patch's faces): what the report's thickness per patch claims.
     patch_of = {f: name.split(" t=")[0] for f, name in names.items() if " t=" in name}
-    named_t = {name.split(" t=")[0]: float(name.split(" t=")[1]) for name in names.values() if " t=" in name}
+    named_t = {name.split(" t=")[0]: named_thickness(name) for name in names.values() if " t=" in name}
     sample_patch = np.array([patch_of.get(int(f), "") for f in fo[tidx]])
     area_of = {patch: sum(area[f] for f, p in patch_of.items() if p == patch) for patch in named_t}
     print_agreement("patches: median measured thickness within 2% of the reported one", named_t, area_of,

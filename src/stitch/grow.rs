@@ -121,8 +121,17 @@ pub(super) fn grow<K: Kernel>(
             }
             Verdict::Extend(x) => {
                 let nearest = x.distance;
-                let level = false;
-                open_edges.push(OpenEdge { free: k, edge, face, patch, probe: p, length, nearest, open: true, level });
+                open_edges.push(OpenEdge {
+                    free: k,
+                    edge,
+                    face,
+                    patch,
+                    probe: p,
+                    length,
+                    nearest,
+                    open: true,
+                    level: false,
+                });
                 let mut ids = vec![patch + 1, x.partner + 1];
                 ids.sort_unstable();
                 Some((

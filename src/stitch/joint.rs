@@ -88,9 +88,10 @@ pub fn is_open(probe: &EdgeProbe, step: f64, to_mid: f64, inside: impl Fn(DVec3,
 }
 
 /// Within this share of the step past an edge, a face parallel to the patch through the point tested makes it
-/// in the material for the step search (`edges::open_on_level`): past the edge of a wall whose middle runs exactly along a face (the floor of
-/// a recess half the wall deep: a thinner level of the wall), the point lies on that face, where an inside test
-/// is a toss-up, and the wall goes on. A face across the patch there (the rim's) does not count.
+/// in the material for the step search (`edges::open_on_level`): past the edge of a wall whose middle runs
+/// exactly along a face (the floor of a recess half the wall deep: a thinner level of the wall), the point lies
+/// on that face, where an inside test is a toss-up, and the wall goes on. A face across the patch there (the
+/// rim's) does not count.
 pub const LEVEL_FACE_SHARE: f64 = 0.01;
 
 /// A face is parallel to a patch (`LEVEL_FACE_SHARE`) when their normals are within about 2.6 degrees (cosine
