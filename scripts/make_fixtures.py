@@ -660,6 +660,19 @@ def plate_thick_pad() -> Fixture:
     return Fixture(single_solid(part), 240 * 140 * 1.5 + 50 * 50 * 2.5, 11)
 
 
+def tray_thick_rim() -> Fixture:
+    """Tray 200 x 120, floor 1 thick, with a rim 2.8 thick standing 3.5 above the floor all round (4.5 high
+    outside): the class of a low thick rim along a thin floor (a machined or cast case's side wall, a stiffening
+    edge), thicker than the part's gauge and carrying too little of its area (under 10%) to set t_max. It is
+    lower than five times its thickness but long: a wall all the same, whose mid-surface (1.4 in from the outer
+    skins) meets the floor's (z = 0.5) in a T all round.
+    Faces: 11 (outside: base and 4 sides; rim top; inside: floor and 4 sides).
+    Volume: 200 * 120 * 4.5 - 194.4 * 114.4 * 3.5.
+    """
+    part = box(0, 0, 0, 200, 120, 4.5) - box(2.8, 2.8, 1, 194.4, 114.4, 3.5)
+    return Fixture(single_solid(part), 200 * 120 * 4.5 - 194.4 * 114.4 * 3.5, 11)
+
+
 def spherical_cap() -> Fixture:
     """A spherical shell cap: the material between concentric spheres R 30 and R 28 centred at (30, 30, -10),
     above z = 0 (a dome, a lamp's shade): the class of a concentric sphere pair. Mid-surface: the sphere R 29.
@@ -779,18 +792,18 @@ def channel_thick_flanges() -> Fixture:
 
 
 def plate_land() -> Fixture:
-    """A plate 100 x 60 x 2 (z 1.5..3.5) with a land 4 wide and 1.5 deep under it along y (x 48..52, z 0..1.5):
-    the class of a wall crossed by something standing on it that gets no patch of its own (a thick land, a bead,
-    a block: here 3.5 thick, over t_max 3, and too narrow for its thickness to be a wall). The plate's bottom
-    skin is two faces, one each side; its top skin, one face, is the patch's reference, clipped to the bottom
-    faces' footprint, so the band over the land (4 wide, over the clip's narrow limit of t_max) lies over no
-    partner. At mid-wall the band lies in the material: the plate runs on through the land's root. Mid-surface:
-    z = 2.5 over the whole plate, one face.
+    """A plate 100 x 60 x 2 (z 1.5..3.5) with a land 3.2 wide and 1.5 deep under it along y (x 48.4..51.6,
+    z 0..1.5): the class of a wall crossed by something standing on it that gets no patch of its own (a thick
+    land, a bead, a block: here 3.5 thick, over t_max 3, and narrower than its thickness, so no wall; its sides,
+    3.2 apart and 1.5 high, are no wall either). The plate's bottom skin is two faces, one each side; its top
+    skin, one face, is the patch's reference, clipped to the bottom faces' footprint, so the band over the land
+    (3.2 wide, over the clip's narrow limit of t_max) lies over no partner. At mid-wall the band lies in the
+    material: the plate runs on through the land's root. Mid-surface: z = 2.5 over the whole plate, one face.
     Faces: 10 (top, 2 bottoms, 4 sides, the land's bottom and 2 sides).
-    Volume: 100 * 60 * 2 + 4 * 1.5 * 60.
+    Volume: 100 * 60 * 2 + 3.2 * 1.5 * 60.
     """
-    part = box(0, 0, 1.5, 100, 60, 2) + box(48, 0, 0, 4, 60, 1.5)
-    return Fixture(single_solid(part.clean()), 100 * 60 * 2 + 4 * 1.5 * 60, 10)
+    part = box(0, 0, 1.5, 100, 60, 2) + box(48.4, 0, 0, 3.2, 60, 1.5)
+    return Fixture(single_solid(part.clean()), 100 * 60 * 2 + 3.2 * 1.5 * 60, 10)
 
 
 def plate_honeycomb() -> Fixture:
@@ -1033,6 +1046,7 @@ PARTS: list[Callable[[], Fixture]] = [
     box_drafted_rounded,
     tapered_plate,
     plate_thick_pad,
+    tray_thick_rim,
     spherical_cap,
     dome_bspline,
     cone_boss,

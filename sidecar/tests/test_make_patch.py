@@ -386,8 +386,8 @@ def test_clip_keeps_a_narrow_piece_between_covered_ones_and_drops_one_at_a_dead_
 
 
 def test_clip_keeps_a_wide_band_between_covered_pieces_where_the_wall_runs_on_under_it(client):
-    # plate_land.step: the plate's top skin (z = 3.5) over its two bottom faces, a 4 wide land under it between
-    # them (x 48..52, z 0..1.5). The band over the land is wider than `narrow`, but at mid-wall (z = 2.5) it lies
+    # plate_land.step: the plate's top skin (z = 3.5) over its two bottom faces, a 3.2 wide land under it between
+    # them (x 48.4..51.6, z 0..1.5). The band over the land is wider than `narrow`, but at mid-wall (z = 2.5) it lies
     # in the material all along: the plate runs on through the land's root.
     handle = load_fixture(client, "plate_land.step")
     g = graph(client, handle)
@@ -395,18 +395,18 @@ def test_clip_keeps_a_wide_band_between_covered_pieces_where_the_wall_runs_on_un
     bottoms = [f["id"] for f in g["faces"] if f["normal"][2] < -0.99 and f["centroid"][2] > 1.0]
     assert len(bottoms) == 2
 
-    def area(narrow=3.0, **wall):
+    def area(narrow=2.0, **wall):
         clip = {"partners": [bottoms], "fuzzy": 1e-6, "narrow": narrow, "narrow_end": narrow, **wall}
         ok = client.ok("make_patch", handle=handle, faces=[top["id"]], offset=-1.0, clip=clip)
         return sum(f["area"] for f in ok["faces"])
 
     assert area(thickness=2.0, to_mid=0.0, wall_max=3.0) == pytest.approx(100.0 * 60.0)
     # Without the wall to probe, `narrow` decides.
-    assert area() == pytest.approx(96.0 * 60.0)
+    assert area() == pytest.approx(96.8 * 60.0)
     # Where mid-wall lies outside the material (here: told it is 2 above the patch, over the plate), the band goes.
-    assert area(thickness=2.0, to_mid=2.0, wall_max=3.0) == pytest.approx(96.0 * 60.0)
+    assert area(thickness=2.0, to_mid=2.0, wall_max=3.0) == pytest.approx(96.8 * 60.0)
     # A strict clip (narrow 0: a minor thickness level) keeps only what lies over the partners, wall or not.
-    assert area(narrow=0.0, thickness=2.0, to_mid=0.0, wall_max=3.0) == pytest.approx(96.0 * 60.0)
+    assert area(narrow=0.0, thickness=2.0, to_mid=0.0, wall_max=3.0) == pytest.approx(96.8 * 60.0)
 
 
 def test_clip_keeps_a_bay_in_the_footprint_where_the_wall_runs_on_under_it(client):

@@ -228,6 +228,21 @@ impl FaceGraph {
         }
     }
 
+    /// The `[length, width]` of the rectangle with the face's area and perimeter (a square of the face's area for a
+    /// face rounder than a square, such as a disc): a long band's length and width.
+    pub fn face_size(&self, face: FaceId) -> [f64; 2] {
+        let (area, perimeter) = (self.faces[face].area, self.perimeter(face));
+        let half = 0.25 * perimeter;
+        if perimeter <= 0.0 {
+            return [f64::INFINITY, f64::INFINITY];
+        }
+        if half * half <= area {
+            return [area.sqrt(), area.sqrt()];
+        }
+        let length = half + (half * half - area).sqrt();
+        [length, area / length]
+    }
+
     /// Length of all of the face's loops.
     pub fn perimeter(&self, face: FaceId) -> f64 {
         self.faces[face].loops.iter().flatten().map(|&e| self.edges[e].length).sum()

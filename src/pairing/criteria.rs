@@ -7,17 +7,19 @@ use super::overlap::{self, Overlap};
 use super::wall_class::CHUNKY_SHARE;
 use super::{Pair, PairKind, Rejection, Thickness};
 use crate::geom::angle_between;
-use crate::model::face_graph::{Convexity, Face, FaceGraph, FaceId, Surface};
+use crate::model::face_graph::{Convexity, Face, FaceGraph, FaceId, Mesh, Surface};
 use crate::model::tolerance::Tolerances;
 
-/// The largest thickness a pair of skins `widths` wide may have and be a wall: t_max, or more, up to t_bound,
-/// when the wall is thin for its width, at most CHUNKY_SHARE of it (the ratio under which a solid is
-/// thin-walled). The width is the mean width 2 x area / perimeter of the narrower skin: all of a long band's
-/// width and half a square's or a disc's, so the rule is never more lenient than the solid's. Thicker pairs
-/// are blocks (a lug's sides, a pin's flats), not walls.
-pub fn wall_limit(tol: &Tolerances, widths: [f64; 2]) -> f64 {
-    let width = widths[0].min(widths[1]);
-    tol.t_max.max((CHUNKY_SHARE * width).min(tol.t_bound))
+/// The largest thickness a pair of skins `sizes` (each `[length, width]`, see [`FaceGraph::face_size`]) may
+/// have and be a wall: t_max, or more, up to t_bound, when the wall is thin for its extent, as a thin-walled
+/// solid is: at most CHUNKY_SHARE of the length of the shorter skin, and no more than the wider skin is wide
+/// (a wall is at least as wide as it is thick; a narrower pair goes through the stub tests as any other). A low
+/// thick rim along a tray's edge is a wall; a lug's sides (as long as wide) and a pin's flats (both narrower than
+/// they stand apart) are not.
+pub fn wall_limit(tol: &Tolerances, sizes: [[f64; 2]; 2]) -> f64 {
+    let length = sizes[0][0].min(sizes[1][0]);
+    let width = sizes[0][1].max(sizes[1][1]);
+    tol.t_max.max((CHUNKY_SHARE * length).min(width).min(tol.t_bound))
 }
 
 /// Tests whether faces `a` and `b` are the two skins of one wall.
@@ -26,7 +28,8 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
     // Only the thickness limit depends on the pair (its width); every other tolerance stays the solid's. With
     // no room above t_max (a user's hard limit) the widths need not be measured.
     let limit =
-        if tol.t_bound > tol.t_max { wall_limit(tol, [graph.face_width(a), graph.face_width(b)]) } else { tol.t_max };
+        if tol.t_bound > tol.t_max { wall_limit(tol, [graph.face_size(a), graph.face_size(b)]) } else { tol.t_max };
+    let t_max = tol.t_max;
     let tol = &Tolerances { t_max: limit, ..*tol };
     let (kind, thickness, overlap_area) = match analytic(fa, fb, tol) {
         Err(rejection) if measurable(fa, fb, &rejection) => {
@@ -48,8 +51,62 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
         }
         result => result?,
     };
-    reject_stub(graph, [a, b], thickness.mean)?;
+    if thickness.mean > t_max {
+        reject_stacked(graph, [a, b], thickness.mean)?;
+    }
+    reject_stub(graph, [a, b], thickness.mean, tol)?;
     Ok(Pair { faces: [a.min(b), a.max(b)], kind, thickness, overlap_area })
+}
+
+/// Share of the smaller face's samples whose ray across the wall may meet another face first before the pair
+/// counts as stacked walls: a hole or a pocket in between is a few samples, a second layer most of them.
+const STACKED_SHARE: f64 = 0.5;
+
+/// Samples of the smaller face tested by `reject_stacked`: enough to tell most of it from a few holes.
+const MAX_STACKED_SAMPLES: usize = 32;
+
+/// How much nearer than the partner another face must be to lie between the two: the skins' own mesh chords
+/// and a draft's spread stay well within it.
+const STACKED_GAP: f64 = 0.05;
+
+/// A pair thicker than t_max (a wall only when thin for its extent, `wall_limit`) is one wall when the material
+/// runs from one face to the other: rays from points of the smaller face, along its inward normal, meet no
+/// other face nearer than the partner (at least `1 - STACKED_GAP` of the thickness) at most samples. Two sheets
+/// lying one on the other a gap apart (a hem, a doubled flange) have each their own pair, and their outer skins
+/// would otherwise pair across both. Within t_max the pairing of every other wall stands as it was.
+fn reject_stacked(graph: &FaceGraph, [a, b]: [FaceId; 2], thickness: f64) -> Result<(), Rejection> {
+    let from = if graph.faces[a].area <= graph.faces[b].area { a } else { b };
+    let Some(mesh) = graph.faces[from].mesh.as_ref() else { return Ok(()) };
+    let reach = (1.0 - STACKED_GAP) * thickness;
+    let lo = graph.faces[a].bbox.min.min(graph.faces[b].bbox.min);
+    let hi = graph.faces[a].bbox.max.max(graph.faces[b].bbox.max);
+    let near: Vec<&Mesh> = graph
+        .faces
+        .iter()
+        .filter(|f| f.id != a && f.id != b && f.bbox.min.cmple(hi).all() && f.bbox.max.cmpge(lo).all())
+        .filter_map(|f| f.mesh.as_ref())
+        .collect();
+    let step = mesh.triangles.len().div_ceil(MAX_STACKED_SAMPLES).max(1);
+    let (mut samples, mut blocked, mut nearest) = (0usize, 0usize, f64::INFINITY);
+    for t in mesh.triangles.iter().step_by(step) {
+        let [p, q, r] = t.map(|i| mesh.vertices[i as usize]);
+        let outward = (q - p).cross(r - p).normalize_or_zero();
+        if outward == DVec3::ZERO {
+            continue;
+        }
+        let centre = (p + q + r) / 3.0;
+        samples += 1;
+        let first =
+            near.iter().filter_map(|m| m.nearest_hit(centre, -outward, reach, |_| true)).fold(f64::INFINITY, f64::min);
+        if first.is_finite() {
+            blocked += 1;
+            nearest = nearest.min(first);
+        }
+    }
+    if samples > 0 && blocked as f64 > STACKED_SHARE * samples as f64 {
+        return Err(Rejection::Stacked { thickness, between: nearest });
+    }
+    Ok(())
 }
 
 /// Curved faces whose analytic test fails on their parameters alone (axes or centres apart, surface kinds
@@ -151,22 +208,63 @@ const PROUD_CONCAVE_SHARE: f64 = 0.25;
 /// along a plate's edge), not a skin of a wall: the stub's material belongs to the wall it stands on, whose patch
 /// runs on beneath it. Width is 2 x area / perimeter (the width of a band). A narrow strip between two ribs
 /// stays paired: its edges to the ribs are concave.
-fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64) -> Result<(), Rejection> {
+fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64, tol: &Tolerances) -> Result<(), Rejection> {
     if !all_planar(graph, &faces) {
         return Ok(());
     }
-    let proud = |f: FaceId| {
-        let edges = graph.faces[f].loops.iter().flatten().map(|&e| &graph.edges[e]);
-        let concave: f64 = edges.filter(|e| e.convexity == Convexity::Concave).map(|e| e.length).sum();
-        concave < PROUD_CONCAVE_SHARE * graph.perimeter(f)
-    };
     for face in faces {
-        let width = graph.face_width(face);
-        if width < thickness && proud(face) {
+        let skin = flat_skin(graph, face, tol);
+        let (width, perimeter, concave) = skin_outline(graph, &skin);
+        if width < thickness && concave < PROUD_CONCAVE_SHARE * perimeter {
             return Err(Rejection::Stub { width, thickness, top: true });
         }
     }
     Ok(())
+}
+
+/// The planar faces that continue `face` in its plane across smooth edges (a flat skin the CAD split into
+/// faces along a line, a sketch's or a moulding step's), `face` first, then in id order: how the skin is split
+/// must not decide whether it is the top of a stub.
+fn flat_skin(graph: &FaceGraph, face: FaceId, tol: &Tolerances) -> Vec<FaceId> {
+    let Surface::Plane { origin, normal } = graph.faces[face].surface else { return vec![face] };
+    let on_plane = |f: FaceId| match graph.faces[f].surface {
+        Surface::Plane { origin: o, normal: n } => {
+            angle_between(n, normal) <= tol.parallel_angle && (o - origin).dot(normal).abs() <= tol.point
+        }
+        _ => false,
+    };
+    let mut skin = vec![face];
+    let mut k = 0;
+    while k < skin.len() {
+        for next in graph.smooth_neighbours(skin[k]) {
+            if !skin.contains(&next) && on_plane(next) {
+                skin.push(next);
+            }
+        }
+        k += 1;
+    }
+    skin[1..].sort_unstable();
+    skin
+}
+
+/// The mean width (2 x area / perimeter) of the faces `skin` taken as one, its perimeter and the concave part
+/// of it (edges between two of its faces lie inside it).
+fn skin_outline(graph: &FaceGraph, skin: &[FaceId]) -> (f64, f64, f64) {
+    let area: f64 = skin.iter().map(|&f| graph.faces[f].area).sum();
+    let (mut perimeter, mut concave) = (0.0, 0.0);
+    for &f in skin {
+        for e in graph.faces[f].loops.iter().flatten().map(|&e| &graph.edges[e]) {
+            if e.faces.iter().all(|g| skin.contains(g)) && e.faces.len() > 1 {
+                continue;
+            }
+            perimeter += e.length;
+            if e.convexity == Convexity::Concave {
+                concave += e.length;
+            }
+        }
+    }
+    let width = if perimeter > 0.0 { 2.0 * area / perimeter } else { f64::INFINITY };
+    (width, perimeter, concave)
 }
 
 /// Planar faces narrower than this share of the distance between them are slivers, whatever joins them: a shell

@@ -147,6 +147,13 @@ pub enum Rejection {
         thickness: f64,
         sheet: f64,
     },
+    /// Faces farther apart than t_max with another face between them across most of the smaller one: the
+    /// outer skins of two walls lying one on the other (a hemmed or doubled sheet, layers a gap apart), each
+    /// wall already paired on its own.
+    Stacked {
+        thickness: f64,
+        between: f64,
+    },
 }
 
 impl Rejection {
@@ -163,7 +170,11 @@ impl Rejection {
             Rejection::Overlap { share, .. } if *share <= 0.0 => 4,
             Rejection::Overlap { .. } => 6,
             Rejection::Spread { .. } => 7,
-            Rejection::Stub { .. } | Rejection::MinorLevel { .. } | Rejection::Lip { .. } | Rejection::Web { .. } => 8,
+            Rejection::Stub { .. }
+            | Rejection::MinorLevel { .. }
+            | Rejection::Lip { .. }
+            | Rejection::Web { .. }
+            | Rejection::Stacked { .. } => 8,
         }
     }
 
@@ -203,6 +214,9 @@ impl Rejection {
             }
             Rejection::Web { thickness, sheet } => {
                 format!("faces {thickness:.4} apart spanning a wall {sheet:.4} thick: a web of that wall, not a wall")
+            }
+            Rejection::Stacked { thickness, between } => {
+                format!("faces {thickness:.4} apart with another face {between:.4} from one: stacked walls, not one")
             }
         }
     }
@@ -277,34 +291,64 @@ pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool], tol: &T
             }
         }
     }
+    // Walls over t_max (thin for their extent, `criteria::wall_limit`) are settled after the others, against
+    // them: they take nothing from the walls within t_max (whose narrow faces the context rules judge by the
+    // walls around them), and go through the same rules themselves.
+    let (mut pairs, mut thick): (Vec<Pair>, Vec<Pair>) = pairs.into_iter().partition(|p| p.thickness.mean <= tol.t_max);
+    reject_in_context(graph, &mut pairs, &[], &mut near, pairable, tol, tol.t_max);
+    reject_in_context(graph, &mut thick, &pairs, &mut near, pairable, tol, f64::INFINITY);
+    if !thick.is_empty() {
+        // Back in candidate order, as one pass would have left them.
+        let rank: std::collections::HashMap<[FaceId; 2], usize> =
+            tested.iter().enumerate().map(|(k, &(a, b, _))| ([a.min(b), a.max(b)], k)).collect();
+        pairs.extend(thick);
+        pairs.sort_by_key(|p| rank.get(&p.faces).copied());
+    }
+    continuation::share_continued_thickness(graph, &mut pairs);
+    let (groups, roles) = groups::group_and_classify(graph, &pairs, &near, pairable);
+    Pairing { pairs, groups, roles }
+}
+
+/// Drops the `pairs` that the rules of the walls around them reject (the sides of a stub, a minor level or a
+/// lip, a web of a wider wall), judged among themselves and the `settled` pairs, which stay. The tops of stubs
+/// up to `tops_up_to` thick count as skins that join the sides of a stub.
+fn reject_in_context(
+    graph: &FaceGraph,
+    pairs: &mut Vec<Pair>,
+    settled: &[Pair],
+    near: &mut [Option<NearMiss>],
+    pairable: &[bool],
+    tol: &Tolerances,
+    tops_up_to: f64,
+) {
+    let all = |pairs: &[Pair]| -> Vec<Pair> { settled.iter().chain(pairs).cloned().collect() };
     // The faces that can join the sides of a stub: the skins of walls, and the stubs' own tops (a top's near
     // miss also lands on its partner, which is a skin of the wall beneath anyway).
     let mut skins = vec![false; graph.faces.len()];
-    for pair in &pairs {
+    for pair in settled.iter().chain(pairs.iter()) {
         pair.faces.iter().for_each(|&f| skins[f] = true);
     }
     for (face, miss) in near.iter().enumerate() {
-        if let Some(NearMiss { rejection: Rejection::Stub { top: true, .. }, .. }) = miss {
-            skins[face] = true;
+        if let Some(NearMiss { rejection: Rejection::Stub { top: true, thickness, .. }, .. }) = miss {
+            skins[face] |= *thickness <= tops_up_to;
         }
     }
     let stubs = pairs.iter().map(|p| criteria::stub_sides(graph, p, &skins).map(|r| (p.faces.to_vec(), r))).collect();
-    drop_rejected(&mut pairs, &mut near, stubs);
-    let pairs_of = pairs_by_face(graph.faces.len(), &pairs);
+    drop_rejected(pairs, near, stubs);
+    let every = all(pairs);
+    let pairs_of = pairs_by_face(graph.faces.len(), &every);
     let minor = pairs
         .iter()
         .map(|p| criteria::minor_level(graph, p, &pairs_of, tol.point).map(|(f, r)| (vec![f], r)))
         .collect();
-    drop_rejected(&mut pairs, &mut near, minor);
-    let pairs_of = pairs_by_face(graph.faces.len(), &pairs);
+    drop_rejected(pairs, near, minor);
+    let every = all(pairs);
+    let pairs_of = pairs_by_face(graph.faces.len(), &every);
     let webs = pairs
         .iter()
         .map(|p| criteria::web_of_sheet(graph, p, &pairs_of, pairable).map(|r| (p.faces.to_vec(), r)))
         .collect();
-    drop_rejected(&mut pairs, &mut near, webs);
-    continuation::share_continued_thickness(graph, &mut pairs);
-    let (groups, roles) = groups::group_and_classify(graph, &pairs, &near, pairable);
-    Pairing { pairs, groups, roles }
+    drop_rejected(pairs, near, webs);
 }
 
 /// The pairs of each face, indexed by face id.

@@ -81,20 +81,52 @@ fn distance_limit() {
     assert!(matches!(err, Rejection::Distance { distance, .. } if (distance - 3.01).abs() < 1e-9), "{err:?}");
 }
 
+/// A `length` x `width` top (+z) at height `z` over its bottom (-z) at 0, their edges `length` and `width` round.
+fn band(length: f64, width: f64, z: f64) -> crate::model::face_graph::FaceGraph {
+    let faces = vec![
+        rect(DVec3::ZERO, DVec3::Y * width, DVec3::X * length, -DVec3::Z),
+        rect(DVec3::Z * z, DVec3::X * length, DVec3::Y * width, DVec3::Z),
+    ];
+    graph_with_lengths(faces, &[(0, 1, Convexity::Convex, 2.0 * (length + width))])
+}
+
 #[test]
-fn a_wall_thicker_than_t_max_pairs_up_to_a_fifth_of_its_width() {
-    // The 60 x 40 slab's skins, each 200 long round (mean width 2 x 2400 / 200 = 24): a wall up to 4.8 thick,
-    // over t_max 3, when the solid's safety bound allows it; at t_max when t_max is the user's hard limit.
-    let slab = |z: f64| graph_with_lengths(slab_faces(z), &[(0, 1, Convexity::Convex, 200.0)]);
+fn a_wall_thicker_than_t_max_pairs_when_thin_for_its_extent() {
+    // Over t_max 3, when the solid's safety bound allows it, a wall is thin for its extent: at most a fifth of
+    // its length and no more than its width. A long low band (a tray's thick rim, 60 x 5): up to 5 thick.
     let bounded = Tolerances { t_bound: 10.0, ..tol() };
-    let p = criteria::test_pair(&slab(4.7), 0, 1, &bounded).unwrap();
-    assert!((p.thickness.mean - 4.7).abs() < 1e-9);
-    let err = criteria::test_pair(&slab(4.9), 0, 1, &bounded).unwrap_err();
-    assert!(matches!(err, Rejection::Distance { limit, .. } if (limit - 4.8).abs() < 1e-9), "{err:?}");
-    assert!(criteria::test_pair(&slab(4.7), 0, 1, &tol()).is_err());
-    // The bound holds whatever the width.
-    let tight = Tolerances { t_bound: 4.0, ..tol() };
-    assert!(criteria::test_pair(&slab(4.2), 0, 1, &tight).is_err());
+    let p = criteria::test_pair(&band(60.0, 5.0, 4.5), 0, 1, &bounded).unwrap();
+    assert!((p.thickness.mean - 4.5).abs() < 1e-9);
+    let err = criteria::test_pair(&band(60.0, 5.0, 5.1), 0, 1, &bounded).unwrap_err();
+    assert!(matches!(err, Rejection::Distance { limit, .. } if (limit - 5.0).abs() < 1e-9), "{err:?}");
+    // A square 20 x 20 (a lug's sides): a fifth of its side.
+    assert!(criteria::test_pair(&band(20.0, 20.0, 3.9), 0, 1, &bounded).is_ok());
+    let err = criteria::test_pair(&band(20.0, 20.0, 4.1), 0, 1, &bounded).unwrap_err();
+    assert!(matches!(err, Rejection::Distance { limit, .. } if (limit - 4.0).abs() < 1e-9), "{err:?}");
+    // At t_max when t_max is the user's hard limit, and the bound holds whatever the extent.
+    assert!(criteria::test_pair(&band(60.0, 40.0, 3.9), 0, 1, &tol()).is_err());
+    assert!(criteria::test_pair(&band(60.0, 40.0, 9.9), 0, 1, &bounded).is_ok());
+    assert!(criteria::test_pair(&band(60.0, 40.0, 10.1), 0, 1, &bounded).is_err());
+}
+
+#[test]
+fn two_sheets_lying_one_on_the_other_are_not_one_wall() {
+    // Two 2 mm sheets 0.1 apart (a hem): each pairs on its own; their outer skins, 4.1 apart and over t_max,
+    // have the gap's faces between them.
+    let faces = vec![
+        rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+        rect(DVec3::Z * 4.1, DVec3::X * 60.0, DVec3::Y * 40.0, DVec3::Z),
+        rect(DVec3::Z * 2.0, DVec3::X * 60.0, DVec3::Y * 40.0, DVec3::Z),
+        rect(DVec3::Z * 2.1, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+    ];
+    let g = graph_with_lengths(faces, &[(0, 1, Convexity::Convex, 200.0)]);
+    let bounded = Tolerances { t_bound: 10.0, ..tol() };
+    let err = criteria::test_pair(&g, 0, 1, &bounded).unwrap_err();
+    assert!(matches!(err, Rejection::Stacked { between, .. } if (between - 2.0).abs() < 1e-6), "{err:?}");
+    assert!(criteria::test_pair(&g, 0, 2, &bounded).is_ok());
+    // Without the second sheet the skins 4.1 apart are one wall.
+    let g = graph_with_lengths(g.faces[..2].to_vec(), &[(0, 1, Convexity::Convex, 200.0)]);
+    assert!(criteria::test_pair(&g, 0, 1, &bounded).is_ok());
 }
 
 #[test]
@@ -760,4 +792,26 @@ fn a_face_spanning_a_plate_facing_a_pocket_inside_it_is_the_plate_not_a_wall() {
     faces.extend(pocket(4.0));
     let pairing = detect(&graph_with_lengths(faces, &spans), &tol(), &[true; 4]);
     assert_eq!(pairing.pairs.iter().map(|p| p.faces).collect::<Vec<_>>(), vec![[0, 1], [2, 3]]);
+}
+
+#[test]
+fn a_flat_skin_split_along_a_line_is_one_skin_for_the_stub_test() {
+    // A 60 x 40 plate 2.5 thick whose top is two faces in one plane, split 2 from its edge (a sketch's line):
+    // the 2 wide strip alone is narrower than the wall is thick and stands proud, but it is a piece of the
+    // plate's top, not the top of a stub, and pairs with the bottom.
+    let faces = vec![
+        rect(DVec3::ZERO, DVec3::Y * 40.0, DVec3::X * 60.0, -DVec3::Z),
+        rect(DVec3::Z * 2.5, DVec3::X * 60.0, DVec3::Y * 2.0, DVec3::Z),
+        rect(DVec3::new(0.0, 2.0, 2.5), DVec3::X * 60.0, DVec3::Y * 38.0, DVec3::Z),
+    ];
+    let edges = [(1, 2, Convexity::Smooth, 60.0), (0, 1, Convexity::Convex, 64.0), (0, 2, Convexity::Convex, 136.0)];
+    let g = graph_with_lengths(faces, &edges);
+    let p = criteria::test_pair(&g, 0, 1, &tol()).unwrap();
+    assert!((p.thickness.mean - 2.5).abs() < 1e-9);
+    // The same strip with a step between it and the rest (not in one plane) stays the top of a stub.
+    let mut faces = g.faces.clone();
+    faces[2] = rect(DVec3::new(0.0, 2.0, 2.0), DVec3::X * 60.0, DVec3::Y * 38.0, DVec3::Z);
+    let g = graph_with_lengths(faces, &edges);
+    let err = criteria::test_pair(&g, 0, 1, &tol()).unwrap_err();
+    assert!(matches!(err, Rejection::Stub { top: true, .. }), "{err:?}");
 }
