@@ -232,10 +232,10 @@ impl FaceGraph {
     /// face rounder than a square, such as a disc): a long band's length and width.
     pub fn face_size(&self, face: FaceId) -> [f64; 2] {
         let (area, perimeter) = (self.faces[face].area, self.perimeter(face));
-        let half = 0.25 * perimeter;
         if perimeter <= 0.0 {
             return [f64::INFINITY, f64::INFINITY];
         }
+        let half = 0.25 * perimeter;
         if half * half <= area {
             return [area.sqrt(), area.sqrt()];
         }

@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use super::levels::one_plane;
 use super::overlap::{self, Overlap};
 use super::wall_class::CHUNKY_SHARE;
 use super::{Pair, PairKind, Rejection, Thickness};
@@ -226,18 +227,12 @@ fn reject_stub(graph: &FaceGraph, faces: [FaceId; 2], thickness: f64, tol: &Tole
 /// faces along a line, a sketch's or a moulding step's), `face` first, then in id order: how the skin is split
 /// must not decide whether it is the top of a stub.
 fn flat_skin(graph: &FaceGraph, face: FaceId, tol: &Tolerances) -> Vec<FaceId> {
-    let Surface::Plane { origin, normal } = graph.faces[face].surface else { return vec![face] };
-    let on_plane = |f: FaceId| match graph.faces[f].surface {
-        Surface::Plane { origin: o, normal: n } => {
-            angle_between(n, normal) <= tol.parallel_angle && (o - origin).dot(normal).abs() <= tol.point
-        }
-        _ => false,
-    };
     let mut skin = vec![face];
     let mut k = 0;
     while k < skin.len() {
         for next in graph.smooth_neighbours(skin[k]) {
-            if !skin.contains(&next) && on_plane(next) {
+            let flat = one_plane(&graph.faces[face], &graph.faces[next], tol.point, tol.parallel_angle);
+            if !skin.contains(&next) && flat {
                 skin.push(next);
             }
         }

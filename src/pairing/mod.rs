@@ -321,7 +321,6 @@ fn reject_in_context(
     tol: &Tolerances,
     tops_up_to: f64,
 ) {
-    let all = |pairs: &[Pair]| -> Vec<Pair> { settled.iter().chain(pairs).cloned().collect() };
     // The faces that can join the sides of a stub: the skins of walls, and the stubs' own tops (a top's near
     // miss also lands on its partner, which is a skin of the wall beneath anyway).
     let mut skins = vec![false; graph.faces.len()];
@@ -335,15 +334,13 @@ fn reject_in_context(
     }
     let stubs = pairs.iter().map(|p| criteria::stub_sides(graph, p, &skins).map(|r| (p.faces.to_vec(), r))).collect();
     drop_rejected(pairs, near, stubs);
-    let every = all(pairs);
-    let pairs_of = pairs_by_face(graph.faces.len(), &every);
+    let pairs_of = pairs_by_face(graph.faces.len(), settled.iter().chain(pairs.iter()));
     let minor = pairs
         .iter()
         .map(|p| criteria::minor_level(graph, p, &pairs_of, tol.point).map(|(f, r)| (vec![f], r)))
         .collect();
     drop_rejected(pairs, near, minor);
-    let every = all(pairs);
-    let pairs_of = pairs_by_face(graph.faces.len(), &every);
+    let pairs_of = pairs_by_face(graph.faces.len(), settled.iter().chain(pairs.iter()));
     let webs = pairs
         .iter()
         .map(|p| criteria::web_of_sheet(graph, p, &pairs_of, pairable).map(|r| (p.faces.to_vec(), r)))
@@ -352,7 +349,7 @@ fn reject_in_context(
 }
 
 /// The pairs of each face, indexed by face id.
-fn pairs_by_face(faces: usize, pairs: &[Pair]) -> Vec<Vec<&Pair>> {
+fn pairs_by_face<'a>(faces: usize, pairs: impl IntoIterator<Item = &'a Pair>) -> Vec<Vec<&'a Pair>> {
     let mut out: Vec<Vec<&Pair>> = vec![Vec::new(); faces];
     for pair in pairs {
         pair.faces.iter().for_each(|&f| out[f].push(pair));
