@@ -660,6 +660,19 @@ def plate_thick_pad() -> Fixture:
     return Fixture(single_solid(part), 240 * 140 * 1.5 + 50 * 50 * 2.5, 11)
 
 
+def plate_chamfered_pad() -> Fixture:
+    """plate_thick_pad with the pad's sides chamfered 45 degrees over its whole height (a 50 x 50 footprint, a
+    45 x 45 top): the class of a thicker level of a wall whose boundary slopes down to the thinner level (a
+    chamfered or drafted pad, a boss's land). The pad's patch (z = 2) stops 2 short of the chamfers, which reach
+    the plate's top skin; the plate's patch (z = 0.75) stops at the pad's footprint, its outside in the pad. The
+    two levels meet by a ramp across the chamfer's foot, not by the pad's patch running out to the chamfer.
+    Faces: 11. Volume: 240 * 140 * 1.5 + the frustum 2.5 / 3 * (50^2 + 45^2 + 50 * 45).
+    """
+    pad = tapered_box(50, 50, 1.5, 4, -1.5, 1).moved(Location((95, 45, 0)))
+    part = box(0, 0, 0, 240, 140, 1.5) + pad
+    return Fixture(single_solid(part), 240 * 140 * 1.5 + frustum_volume(50, 50, 1.5, 4, -1.5, 1), 11)
+
+
 def tray_thick_rim() -> Fixture:
     """Tray 200 x 120, floor 1 thick, with a rim 2.8 thick standing 3.5 above the floor all round (4.5 high
     outside): the class of a low thick rim along a thin floor (a machined or cast case's side wall, a stiffening
@@ -1046,6 +1059,7 @@ PARTS: list[Callable[[], Fixture]] = [
     box_drafted_rounded,
     tapered_plate,
     plate_thick_pad,
+    plate_chamfered_pad,
     tray_thick_rim,
     spherical_cap,
     dome_bspline,

@@ -344,35 +344,50 @@ fn nearest_on(points: &[DVec3], p: DVec3) -> (DVec3, usize) {
     segments.chain([(points[0], 0)]).min_by(|x, y| x.0.distance(p).total_cmp(&y.0.distance(p))).expect("a sample")
 }
 
-/// Where two bridges owned by one patch meet at a corner of its edges (a pocket's corner, each side bridged by
-/// a ramp into the surrounding wall), their far sides stop short of each other and leave a notch: v
-/// (the corner they share), a and b (their far ends there) and c, where their far lines meet. The quad v, a, c, b
-/// fills it, oriented along the owner's normal (owner edge, quad, normal). Only where the far lines run apart
-/// from the corner (a convex corner of the owner: at a reflex one the bridges overlap instead), meeting within
-/// the owner's reach; not between arcs (a round corner has no notch). `same_point`: two points closer than this
-/// are one.
+/// Where two bridges between the same two patches meet at a corner, the sides on one patch end at one point v
+/// while those on the other stop short of each other and leave a notch: a and b (their ends there) and c, where
+/// their lines meet. The quad v, a, c, b fills it, given to the patch whose sides end at v and oriented along its
+/// edge's normal (edge, quad, normal). Either patch may be the one: round a pocket's corner (the thinner level
+/// inside) the ramps' feet in the thicker patch stop short; round a pad's sloped sides (the thicker level
+/// inside, narrower than the hole its footprint leaves in the thinner one) the bridges meet at the pad's
+/// corner and the thinner patch's edges run on past them to its own corner. Only where the lines through a and
+/// b run apart from the corner (a convex corner: at a reflex one the bridges overlap instead), meeting within
+/// the reach of the patch whose sides end at v; not between arcs (a round corner has no notch). `same_point`:
+/// two points closer than this are one.
 pub fn bridge_corners(bridges: &[StepBridge], edges: &[LooseEdge], same_point: f64) -> Vec<(usize, [DVec3; 4], DVec3)> {
-    // (owner-side corner, far-side end, direction along the far side out past that end) at both ends.
-    let ends = |b: &StepBridge| {
-        let along = (b.quad[2] - b.quad[1]).normalize_or_zero();
-        [(b.quad[0], b.quad[1], -along), (b.quad[3], b.quad[2], along)]
+    // A bridge seen from one of its two edges: that edge, the quad with its first side on that edge.
+    let views = |b: &StepBridge| [(b.owner, b.quad), (b.other, [b.quad[1], b.quad[0], b.quad[3], b.quad[2]])];
+    // (corner on the near side, end of the far side, direction along the far side out past that end) at both ends.
+    let ends = |quad: &[DVec3; 4]| {
+        let along = (quad[2] - quad[1]).normalize_or_zero();
+        [(quad[0], quad[1], -along), (quad[3], quad[2], along)]
     };
     let mut out = Vec::new();
     for (i, x) in bridges.iter().enumerate() {
         for y in &bridges[i + 1..] {
-            if x.axis.is_some() || y.axis.is_some() || edges[x.owner].patch != edges[y.owner].patch {
+            if x.axis.is_some() || y.axis.is_some() {
                 continue;
             }
-            let reach = edges[x.owner].reach;
-            for (v, a, ua) in ends(x) {
-                for (w, b, ub) in ends(y) {
-                    if v.distance(w) > same_point || a.distance(b) <= same_point {
-                        continue;
-                    }
-                    let Some(c) = meeting((a, ua), (b, ub), same_point) else { continue };
-                    let apart = (c - a).dot(ua) > same_point && (c - b).dot(ub) > same_point;
-                    if apart && c.distance(a) <= reach && c.distance(b) <= reach {
-                        out.push((x.owner, [v, a, c, b], edges[x.owner].normal));
+            for (near, quad_x) in views(x) {
+                // y seen from its edge on the same patch as x's near edge, its far edge on the same patch as x's.
+                let far = if near == x.owner { x.other } else { x.owner };
+                let Some((_, quad_y)) = views(y).into_iter().find(|&(e, _)| {
+                    let other = if e == y.owner { y.other } else { y.owner };
+                    edges[e].patch == edges[near].patch && edges[other].patch == edges[far].patch
+                }) else {
+                    continue;
+                };
+                let reach = edges[near].reach;
+                for (v, a, ua) in ends(&quad_x) {
+                    for (w, b, ub) in ends(&quad_y) {
+                        if v.distance(w) > same_point || a.distance(b) <= same_point {
+                            continue;
+                        }
+                        let Some(c) = meeting((a, ua), (b, ub), same_point) else { continue };
+                        let apart = (c - a).dot(ua) > same_point && (c - b).dot(ub) > same_point;
+                        if apart && c.distance(a) <= reach && c.distance(b) <= reach {
+                            out.push((near, [v, a, c, b], edges[near].normal));
+                        }
                     }
                 }
             }

@@ -236,6 +236,33 @@ fn ramps_meeting_at_a_pockets_convex_corner_get_the_notch_between_their_feet_fil
 }
 
 #[test]
+fn bridges_meeting_at_a_sloped_pads_corner_get_the_notch_out_to_the_thinner_patchs_corner_filled() {
+    // A pad with 45-degree sides on a plate: the pad's patch (t=4, patch 1) at z=2 over x, y >= 97.5, the plate's
+    // (t=1.5, patch 0) at z=0.75 round its footprint x, y >= 95. The bridges across the two sides through the
+    // corner meet at the pad's corner; the plate's edges run on 2.5 past them to the footprint's corner.
+    let at = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let edges = [
+        line(0, 1.5, at(95.0, 45.0, 0.75), at(95.0, 95.0, 0.75), DVec3::X),
+        line(0, 1.5, at(95.0, 45.0, 0.75), at(145.0, 45.0, 0.75), DVec3::Y),
+        line(1, 4.0, at(97.5, 47.5, 2.0), at(97.5, 92.5, 2.0), -DVec3::X),
+        line(1, 4.0, at(97.5, 47.5, 2.0), at(142.5, 47.5, 2.0), -DVec3::Y),
+    ];
+    let bridges = step_bridges(&edges);
+    assert_eq!(bridges.len(), 2, "{bridges:?}");
+    let corners = bridge_corners(&bridges, &edges, 1e-9);
+    assert_eq!(corners.len(), 1, "{corners:?}");
+    let (owner, quad, _) = corners[0];
+    assert_eq!(edges[owner].patch, 1, "the pad, whose bridge sides end at its corner, owns the fill");
+    let expected = [at(97.5, 47.5, 2.0), at(95.0, 47.5, 0.75), at(95.0, 45.0, 0.75), at(97.5, 45.0, 0.75)];
+    let same = |p: DVec3, q: DVec3| p.distance(q) < 1e-9;
+    let flipped = [expected[0], expected[3], expected[2], expected[1]];
+    assert!(
+        quad.iter().zip(expected).all(|(&p, q)| same(p, q)) || quad.iter().zip(flipped).all(|(&p, q)| same(p, q)),
+        "{quad:?}"
+    );
+}
+
+#[test]
 fn ramps_meeting_at_a_pockets_reflex_corner_overlap_and_get_no_fill() {
     // The inner corner (56, 26) of an L-shaped pocket: the pocket lies at x < 56 and y < 26 of it; the ramps'
     // feet lines cross at (56.5, 26.5), behind both their ends.

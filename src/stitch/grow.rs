@@ -90,6 +90,22 @@ pub(super) fn grow<K: Kernel>(
                         if let Some(grew) = curved_rims.as_deref_mut() {
                             *grew |= !straight(&fused.edges[edge]);
                         }
+                        // Short of the rim, the edge may still be the thicker level of a step whose boundary
+                        // slopes down to the thinner level (a chamfered pad): the thinner level's open edge
+                        // faces it, and a bridge between the two levels replaces the strip to the rim.
+                        if pass == Pass::Joints {
+                            open_edges.push(OpenEdge {
+                                free: k,
+                                edge,
+                                face,
+                                patch,
+                                probe: p,
+                                length,
+                                nearest: f64::INFINITY,
+                                open: false,
+                                level: false,
+                            });
+                        }
                         Some((
                             patch,
                             StripRequest { edge, face, lengths, onto_face: false, along: None },
