@@ -686,6 +686,21 @@ def tray_thick_rim() -> Fixture:
     return Fixture(single_solid(part), 200 * 120 * 4.5 - 194.4 * 114.4 * 3.5, 11)
 
 
+def plate_lip() -> Fixture:
+    """Plate 100 x 60 x 2 whose end runs on as a lip 1.5 long: the bottom skin stops at x = 100 under a 0.5
+    ledge, the lip's underside at z = 0.5 runs to its end face at x = 101.5 (0.7 high), and the top skin stops
+    at x = 100.3 where a chamfer slopes down to that end. The class of a wall running on past its skins' edges
+    as material too narrow and too irregular to pair (a lip or tongue for a lid's groove, a stepped or
+    chamfered end) farther than half a thickness: it is the wall's own material, no thicker across than the
+    wall, and the wall's mid-surface (z = 1) runs on through it to the lip's end.
+    Faces: 9 (top, bottom, start, ledge, the lip's underside, end face and chamfer, two sides).
+    Volume: the profile's area times 60.
+    """
+    profile = [(0, 0), (100, 0), (100, 0.5), (101.5, 0.5), (101.5, 1.2), (100.3, 2), (0, 2)]
+    area = 0.5 * abs(sum(x0 * z1 - x1 * z0 for (x0, z0), (x1, z1) in zip(profile, profile[1:] + profile[:1])))
+    return Fixture(single_solid(prism_xz(polygon_xz(profile), 60)), area * 60, 9)
+
+
 def spherical_cap() -> Fixture:
     """A spherical shell cap: the material between concentric spheres R 30 and R 28 centred at (30, 30, -10),
     above z = 0 (a dome, a lamp's shade): the class of a concentric sphere pair. Mid-surface: the sphere R 29.
@@ -1060,6 +1075,7 @@ PARTS: list[Callable[[], Fixture]] = [
     tapered_plate,
     plate_thick_pad,
     plate_chamfered_pad,
+    plate_lip,
     tray_thick_rim,
     spherical_cap,
     dome_bspline,

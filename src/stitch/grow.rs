@@ -5,7 +5,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::bridge;
-use super::edges::{open, open_on_level, straight, to_rim};
+use super::edges::{open, open_on_level, straight, to_rim, RimGrowth};
 use super::joint::{self, Verdict};
 use super::{kept_faces, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
@@ -85,14 +85,17 @@ pub(super) fn grow<K: Kernel>(
         let grow = match verdict {
             Verdict::Rim | Verdict::Unresolved if pass == Pass::Partners => None,
             verdict @ (Verdict::Rim | Verdict::Unresolved) => {
-                match to_rim(fused, edge, face, p, patches, solids, curved_rims.is_some()) {
+                let growth = RimGrowth { curved: curved_rims.is_some(), lips: pass == Pass::Joints };
+                match to_rim(fused, edge, face, p, patches, solids, growth) {
                     Some(lengths) => {
                         if let Some(grew) = curved_rims.as_deref_mut() {
                             *grew |= !straight(&fused.edges[edge]);
                         }
-                        // Short of the rim, the edge may still be the thicker level of a step whose boundary
-                        // slopes down to the thinner level (a chamfered pad): the thinner level's open edge
-                        // faces it, and a bridge between the two levels replaces the strip to the rim.
+                        // Short of the rim, the edge may still be one level of a step: the thicker one whose
+                        // boundary slopes down to the thinner level (a chamfered pad), or the thinner one running
+                        // on as a lip past the thicker level's edge. A bridge between the two levels replaces
+                        // the strip to the rim. An edge whose outside is in the material stays open for that
+                        // search, as when it grows nowhere.
                         if pass == Pass::Joints {
                             open_edges.push(OpenEdge {
                                 free: k,
@@ -102,8 +105,9 @@ pub(super) fn grow<K: Kernel>(
                                 probe: p,
                                 length,
                                 nearest: f64::INFINITY,
-                                open: false,
+                                open: verdict == Verdict::Unresolved,
                                 level: false,
+                                to_rim: true,
                             });
                         }
                         Some((
@@ -129,6 +133,7 @@ pub(super) fn grow<K: Kernel>(
                                 nearest: f64::INFINITY,
                                 open,
                                 level,
+                                to_rim: false,
                             });
                         }
                         None
@@ -147,6 +152,7 @@ pub(super) fn grow<K: Kernel>(
                     nearest,
                     open: true,
                     level: false,
+                    to_rim: false,
                 });
                 let mut ids = vec![patch + 1, x.partner + 1];
                 ids.sort_unstable();
@@ -279,6 +285,8 @@ struct OpenEdge<'a> {
     /// Not open, but open once a point on a face parallel to the patch counts as in the material
     /// (`edges::open_on_level`): the step search takes it as open.
     level: bool,
+    /// It grows a strip to the rim unless a bridge takes it: not an edge without a partner.
+    to_rim: bool,
 }
 
 /// What bridges the open edges of a pass across thickness steps and gaps (`step_quads`).
@@ -376,7 +384,7 @@ fn step_quads(
         let key = (ids, joint::JointKind::Step.name(), "extended");
         swept.push((patch, request, key, [e.length, open[other].length]));
     }
-    for (e, _) in open.iter().zip(&bridged).filter(|(e, &b)| !b && e.open && e.nearest.is_infinite()) {
+    for (e, _) in open.iter().zip(&bridged).filter(|(e, &b)| !b && e.open && !e.to_rim && e.nearest.is_infinite()) {
         tally.add((vec![e.patch + 1], "none", "no_partner"), e.length);
     }
     let bridged = open.iter().zip(&bridged).filter(|(_, &b)| b).map(|(e, _)| e.free).collect();

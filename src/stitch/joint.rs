@@ -195,19 +195,20 @@ pub fn through_material(
 /// How far past its samples a free edge with no partner must grow to reach the part's boundary, or None when
 /// it is on the rim already (median shortfall <= `on_rim`) or most samples are not inside the material with
 /// the boundary within reach. Each sample is first moved `to_mid` along the patch normal to the middle of the
-/// wall; `exit(q, d)` is the distance from q, inside the material, along d to the boundary, if within `reach`.
+/// wall; `exit(q, d, n)` is the distance from q, inside the material, along d to the boundary, if within reach
+/// (n: the patch normal there).
 pub fn rim_shortfall(
     probe: &EdgeProbe,
     to_mid: f64,
     on_rim: f64,
     contains: impl Fn(DVec3) -> bool,
-    exit: impl Fn(DVec3, DVec3) -> Option<f64>,
+    exit: impl Fn(DVec3, DVec3, DVec3) -> Option<f64>,
 ) -> Option<Vec<f64>> {
     let shortfall: Vec<Option<f64>> = (0..probe.points.len())
         .map(|k| {
             let q = probe.points[k] + probe.normals[k] * to_mid;
             // A sample on the boundary (an end of the edge at a rim) tells nothing: it takes its neighbours'.
-            contains(q).then(|| exit(q, probe.outward[k])).flatten()
+            contains(q).then(|| exit(q, probe.outward[k], probe.normals[k])).flatten()
         })
         .collect();
     let mut known: Vec<f64> = shortfall.iter().flatten().copied().collect();

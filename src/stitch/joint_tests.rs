@@ -151,10 +151,10 @@ fn an_edge_short_of_the_boundary_grows_to_it_and_one_on_it_stays() {
     p.points = (0..3).map(|k| DVec3::new(k as f64, 0.0, 11.5)).collect();
     p.outward = vec![DVec3::Z; 3];
     let contains = |q: DVec3| q.z < 12.0;
-    let exit = |q: DVec3, d: DVec3| Some((12.0 - q.z) / d.z).filter(|&t| t <= 1.5);
+    let exit = |q: DVec3, d: DVec3, _: DVec3| Some((12.0 - q.z) / d.z).filter(|&t| t <= 1.5);
     assert_eq!(rim_shortfall(&p, 0.0, 0.2, contains, exit), Some(vec![0.5; 3]));
     // One end on a boundary (a corner of the rim): a sliver there, never zero.
-    let corner = |q: DVec3, d: DVec3| if q.x > 1.5 { Some(0.0) } else { exit(q, d) };
+    let corner = |q: DVec3, d: DVec3, n: DVec3| if q.x > 1.5 { Some(0.0) } else { exit(q, d, n) };
     assert_eq!(rim_shortfall(&p, 0.0, 0.2, contains, corner), Some(vec![0.5, 0.5, 0.1]));
     assert_eq!(rim_shortfall(&p, 0.0, 0.6, contains, exit), None, "0.5 short counts as on the rim");
     p.points.iter_mut().for_each(|q| q.z = 12.0);

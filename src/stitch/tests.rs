@@ -233,12 +233,14 @@ fn a_curved_edge_short_of_the_rim_grows_to_it_unless_its_patch_is_freeform() {
     let probe: EdgeProbe = serde_json::from_value::<crate::kernel::protocol::EdgeProbe>(wire).unwrap().into();
     let mesh = SolidMesh::new(&synthetic::cuboid(DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0))).unwrap();
     let analytic = [info(2.0, (1, 0))];
-    let lengths = edges::to_rim(&fused, 0, 0, &probe, &analytic, std::slice::from_ref(&mesh), true).unwrap();
+    const CURVED: edges::RimGrowth = edges::RimGrowth { curved: true, lips: true };
+    const STRAIGHT: edges::RimGrowth = edges::RimGrowth { curved: false, lips: true };
+    let lengths = edges::to_rim(&fused, 0, 0, &probe, &analytic, std::slice::from_ref(&mesh), CURVED).unwrap();
     assert!(lengths.iter().all(|&d| (d - 0.7).abs() < 1e-6), "{lengths:?}");
     let freeform = [PatchInfo { freeform: true, ..info(2.0, (1, 0)) }];
-    assert_eq!(edges::to_rim(&fused, 0, 0, &probe, &freeform, std::slice::from_ref(&mesh), true), None);
+    assert_eq!(edges::to_rim(&fused, 0, 0, &probe, &freeform, std::slice::from_ref(&mesh), CURVED), None);
     // The fallback of a pass the kernel failed: straight edges only.
-    assert_eq!(edges::to_rim(&fused, 0, 0, &probe, &analytic, std::slice::from_ref(&mesh), false), None);
+    assert_eq!(edges::to_rim(&fused, 0, 0, &probe, &analytic, std::slice::from_ref(&mesh), STRAIGHT), None);
 }
 
 #[test]
