@@ -206,6 +206,16 @@ fn line(patch: usize, thickness: f64, from: DVec3, to: DVec3, outward: DVec3) ->
     open_edge(patch, thickness, points, DVec3::Z, outward)
 }
 
+/// `quad` is `expected`, or `expected` run the other way round from its first corner.
+fn assert_same_quad(quad: &[DVec3; 4], expected: [DVec3; 4]) {
+    let same = |p: DVec3, q: DVec3| p.distance(q) < 1e-9;
+    let flipped = [expected[0], expected[3], expected[2], expected[1]];
+    assert!(
+        quad.iter().zip(expected).all(|(&p, q)| same(p, q)) || quad.iter().zip(flipped).all(|(&p, q)| same(p, q)),
+        "{quad:?}"
+    );
+}
+
 #[test]
 fn ramps_meeting_at_a_pockets_convex_corner_get_the_notch_between_their_feet_filled() {
     // A pocket in a plate's underside: its wall (t=1, patch 1) at z=1.5 over x, y >= 20, the plate's (t=2,
@@ -227,12 +237,7 @@ fn ramps_meeting_at_a_pockets_convex_corner_get_the_notch_between_their_feet_fil
     assert_eq!(normal, DVec3::Z);
     // v, the ramps' feet half the thin wall (0.5) out into the plate, and where their lines meet.
     let expected = [v + DVec3::Z * z_thin, at(19.5, 20.0, z_thick), at(19.5, 19.5, z_thick), at(20.0, 19.5, z_thick)];
-    let same = |p: DVec3, q: DVec3| p.distance(q) < 1e-9;
-    let flipped = [expected[0], expected[3], expected[2], expected[1]];
-    assert!(
-        quad.iter().zip(expected).all(|(&p, q)| same(p, q)) || quad.iter().zip(flipped).all(|(&p, q)| same(p, q)),
-        "{quad:?}"
-    );
+    assert_same_quad(&quad, expected);
 }
 
 #[test]
@@ -254,12 +259,7 @@ fn bridges_meeting_at_a_sloped_pads_corner_get_the_notch_out_to_the_thinner_patc
     let (owner, quad, _) = corners[0];
     assert_eq!(edges[owner].patch, 1, "the pad, whose bridge sides end at its corner, owns the fill");
     let expected = [at(97.5, 47.5, 2.0), at(95.0, 47.5, 0.75), at(95.0, 45.0, 0.75), at(97.5, 45.0, 0.75)];
-    let same = |p: DVec3, q: DVec3| p.distance(q) < 1e-9;
-    let flipped = [expected[0], expected[3], expected[2], expected[1]];
-    assert!(
-        quad.iter().zip(expected).all(|(&p, q)| same(p, q)) || quad.iter().zip(flipped).all(|(&p, q)| same(p, q)),
-        "{quad:?}"
-    );
+    assert_same_quad(&quad, expected);
 }
 
 #[test]

@@ -69,6 +69,19 @@ pub(super) fn grow<K: Kernel>(
     for (k, (&(edge, face), p)) in free.iter().zip(probes).enumerate() {
         let patch = patch_of[face];
         let length = fused.edges[edge].length;
+        // The edge as the step search sees it when open with no partner; each verdict below adjusts it.
+        let loose = OpenEdge {
+            free: k,
+            edge,
+            face,
+            patch,
+            probe: p,
+            length,
+            nearest: f64::INFINITY,
+            open: true,
+            level: false,
+            to_rim: false,
+        };
         let verdict = match pass {
             Pass::Joints | Pass::Partners => {
                 let open = open(fused, face, p, patches, solids);
@@ -85,75 +98,33 @@ pub(super) fn grow<K: Kernel>(
         let grow = match verdict {
             Verdict::Rim | Verdict::Unresolved if pass == Pass::Partners => None,
             verdict @ (Verdict::Rim | Verdict::Unresolved) => {
+                let open = verdict == Verdict::Unresolved;
                 let growth = RimGrowth { curved: curved_rims.is_some(), lips: pass == Pass::Joints };
-                match to_rim(fused, edge, face, p, patches, solids, growth) {
-                    Some(lengths) => {
-                        if let Some(grew) = curved_rims.as_deref_mut() {
-                            *grew |= !straight(&fused.edges[edge]);
-                        }
-                        // Short of the rim, the edge may still be one level of a step: the thicker one whose
-                        // boundary slopes down to the thinner level (a chamfered pad), or the thinner one running
-                        // on as a lip past the thicker level's edge. A bridge between the two levels replaces
-                        // the strip to the rim. An edge whose outside is in the material stays open for that
-                        // search, as when it grows nowhere.
-                        if pass == Pass::Joints {
-                            open_edges.push(OpenEdge {
-                                free: k,
-                                edge,
-                                face,
-                                patch,
-                                probe: p,
-                                length,
-                                nearest: f64::INFINITY,
-                                open: verdict == Verdict::Unresolved,
-                                level: false,
-                                to_rim: true,
-                            });
-                        }
-                        Some((
-                            patch,
-                            StripRequest { edge, face, lengths, onto_face: false, along: None },
-                            (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
-                            p,
-                        ))
-                    }
-                    None => {
-                        // A rim edge may still be the thicker level of a step: the thinner level's edge lies on the
-                        // boundary past it, so its outside reads as out of the material.
-                        let open = verdict == Verdict::Unresolved;
-                        if pass == Pass::Joints {
-                            let level = !open && open_on_level(fused, face, p, patches, solids);
-                            open_edges.push(OpenEdge {
-                                free: k,
-                                edge,
-                                face,
-                                patch,
-                                probe: p,
-                                length,
-                                nearest: f64::INFINITY,
-                                open,
-                                level,
-                                to_rim: false,
-                            });
-                        }
-                        None
-                    }
+                let lengths = to_rim(fused, edge, face, p, patches, solids, growth);
+                // The edge may still be one level of a step, which a bridge between the two levels joins instead:
+                // short of the rim, the thicker level whose boundary slopes down to the thinner one (a chamfered
+                // pad) or the thinner one running on as a lip past the thicker level's edge; on the rim, the
+                // thicker level, the thinner level's edge lying on the boundary past it (its outside reads as out
+                // of the material).
+                if pass == Pass::Joints {
+                    let level = lengths.is_none() && !open && open_on_level(fused, face, p, patches, solids);
+                    open_edges.push(OpenEdge { open, level, to_rim: lengths.is_some(), ..loose });
                 }
+                lengths.map(|lengths| {
+                    if let Some(grew) = curved_rims.as_deref_mut() {
+                        *grew |= !straight(&fused.edges[edge]);
+                    }
+                    (
+                        patch,
+                        StripRequest { edge, face, lengths, onto_face: false, along: None },
+                        (vec![patch + 1], joint::JointKind::Rim.name(), "extended"),
+                        p,
+                    )
+                })
             }
             Verdict::Extend(x) => {
                 let nearest = x.distance;
-                open_edges.push(OpenEdge {
-                    free: k,
-                    edge,
-                    face,
-                    patch,
-                    probe: p,
-                    length,
-                    nearest,
-                    open: true,
-                    level: false,
-                    to_rim: false,
-                });
+                open_edges.push(OpenEdge { nearest, ..loose });
                 let mut ids = vec![patch + 1, x.partner + 1];
                 ids.sort_unstable();
                 Some((
@@ -272,6 +243,7 @@ pub(super) fn grow<K: Kernel>(
 
 /// A free edge for the step search: its index among the free edges, patch, probe, length, how far away the
 /// partner its rays found is (infinite for none), and whether it is open (else on the rim).
+#[derive(Clone, Copy)]
 struct OpenEdge<'a> {
     free: usize,
     /// The edge and the face it bounds, in `fused`.
