@@ -355,8 +355,9 @@ fn nearest_on(points: &[DVec3], p: DVec3) -> (DVec3, usize) {
 /// the reach of the patch whose sides end at v; not between arcs (a round corner has no notch). `same_point`:
 /// two points closer than this are one.
 pub fn bridge_corners(bridges: &[StepBridge], edges: &[LooseEdge], same_point: f64) -> Vec<(usize, [DVec3; 4], DVec3)> {
-    // A bridge seen from one of its two edges: that edge, the quad with its first side on that edge.
-    let views = |b: &StepBridge| [(b.owner, b.quad), (b.other, [b.quad[1], b.quad[0], b.quad[3], b.quad[2]])];
+    // A bridge seen from one of its two edges: that edge, the other, the quad with its first side on that edge.
+    let views =
+        |b: &StepBridge| [(b.owner, b.other, b.quad), (b.other, b.owner, [b.quad[1], b.quad[0], b.quad[3], b.quad[2]])];
     // (corner on the near side, end of the far side, direction along the far side out past that end) at both ends.
     let ends = |quad: &[DVec3; 4]| {
         let along = (quad[2] - quad[1]).normalize_or_zero();
@@ -368,13 +369,12 @@ pub fn bridge_corners(bridges: &[StepBridge], edges: &[LooseEdge], same_point: f
             if x.axis.is_some() || y.axis.is_some() {
                 continue;
             }
-            for (near, quad_x) in views(x) {
+            for (near, far, quad_x) in views(x) {
                 // y seen from its edge on the same patch as x's near edge, its far edge on the same patch as x's.
-                let far = if near == x.owner { x.other } else { x.owner };
-                let Some((_, quad_y)) = views(y).into_iter().find(|&(e, _)| {
-                    let other = if e == y.owner { y.other } else { y.owner };
-                    edges[e].patch == edges[near].patch && edges[other].patch == edges[far].patch
-                }) else {
+                let same = |(e, f, _): &(usize, usize, [DVec3; 4])| {
+                    edges[*e].patch == edges[near].patch && edges[*f].patch == edges[far].patch
+                };
+                let Some((_, _, quad_y)) = views(y).into_iter().find(same) else {
                     continue;
                 };
                 let reach = edges[near].reach;
