@@ -293,6 +293,24 @@ def plate_boss() -> Fixture:
     return Fixture(single_solid(part), 12000 + 4 * math.pi * 9, 8)
 
 
+def plate_hollow_boss() -> Fixture:
+    """Plate 100 x 60 x 2.5 with a hollow screw boss at (50, 30): outside R 4.375, bore R 1.875 blind down to
+    the plate's top, 6.7 high (z 2.5..9.2); and a low collar at (20, 30): outside R 3, bore R 2, 1.5 high.
+    Both boxes are under the default boss limit (4 x t_max, 15 here: diagonals 14.1 and 8.6) and both hold a
+    tube's wall (outside and bore pair). The class: a protrusion that holds a wall keeps its patch when it
+    stands at least as far out as the plate is thick; a lower one is a thickening of the plate and goes.
+    Twin: plate_boss (a solid boss, removed).
+    Mid-surface: the plate at z = 1.25, filled under the collar, and the boss's cylinder R 3.125 from it up to
+    z = 9.2, thickness 2.5, joined. Faces: 14 (plate: top, bottom, 4 sides; each tube: outside, top annulus,
+    bore, bore floor). Volume: 100 * 60 * 2.5 + pi * (4.375^2 - 1.875^2) * 6.7 + pi * (3^2 - 2^2) * 1.5.
+    """
+    boss = cylinder_z(50, 30, 2.5, 4.375, 6.7) - cylinder_z(50, 30, 2.5, 1.875, 6.7)
+    collar = cylinder_z(20, 30, 2.5, 3, 1.5) - cylinder_z(20, 30, 2.5, 2, 1.5)
+    part = box(0, 0, 0, 100, 60, 2.5) + boss + collar
+    volume = 100 * 60 * 2.5 + math.pi * (4.375**2 - 1.875**2) * 6.7 + math.pi * (3**2 - 2**2) * 1.5
+    return Fixture(single_solid(part), volume, 14)
+
+
 def plate_chamfers() -> Fixture:
     """flat_plate with its four top rim edges chamfered 1 x 45 degrees (one side only; the faces are 1.41
     wide, under the default limit of 2 x the wall-thickness limit). Twin: flat_plate. Faces: 10.
@@ -1055,6 +1073,7 @@ PARTS: list[Callable[[], Fixture]] = [
     plate_large_hole,
     plate_holes,
     plate_boss,
+    plate_hollow_boss,
     plate_chamfers,
     plate_deep_chamfers,
     l_bracket_chamfer,

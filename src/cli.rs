@@ -208,8 +208,9 @@ pub struct PairingArgs {
     /// Holes up to this diameter (mm) are filled in the mid-surface [default: t_max].
     #[arg(long, value_parser = non_negative_mm, allow_negative_numbers = true)]
     pub hole_max: Option<f64>,
-    /// Bosses, protrusions and tabs standing on a wall within a box of this diagonal (mm) are removed and
-    /// their footprint filled [default: 4 x t_max].
+    /// Solid bosses, pins and standoffs standing on a wall within a box of this diagonal (mm) are removed and
+    /// their footprint filled; a hollow boss or a tab (its sides pair as a wall) standing out at least as far
+    /// as the wall below is thick keeps its mid-patch [default: 4 x t_max].
     #[arg(long, value_parser = non_negative_mm, allow_negative_numbers = true)]
     pub boss_max: Option<f64>,
     /// Keep every hole, whatever its diameter.

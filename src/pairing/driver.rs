@@ -183,7 +183,8 @@ pub fn pair_solid(graph: &FaceGraph, params: PairingParams) -> SolidPairing {
     let limits = params.limits.resolve(t_max);
     let tested = pairing::test_candidates(graph, &tolerances);
     let first = pairing::assemble(graph, &tested, &vec![true; graph.faces.len()], &tolerances);
-    let features = features::recognise(graph, &first.roles, &limits, tolerances.coaxial);
+    let thickness: Vec<f64> = first.groups.iter().map(|g| g.thickness.mean).collect();
+    let features = features::recognise(graph, &first.roles, &thickness, &limits, tolerances.coaxial);
     let pairing = if features.is_empty() {
         first
     } else {

@@ -13,7 +13,8 @@
 //!   one radius, diameter <= `hole_max`.
 //! - A boss, protrusion or tab: an inner loop of a skin whose edges are all concave (the CLoop of Lu, Gadh &
 //!   Tautges), opening onto faces that stay within a box of diagonal <= `boss_max` (a hole through it
-//!   included).
+//!   included) and that hold no wall: a protrusion with both skins of a wall among its faces (a hollow
+//!   screw boss, a tab) is a wall standing on the skin and keeps its mid-patch.
 //!
 //! The region behind a loop is flooded over face adjacency, never back into the skin holding the loop and
 //! never into a face larger than the limit: a through hole's region stops at the opposite skin, whose loop
@@ -25,7 +26,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 use crate::model::face_graph::{Convexity, EdgeId, FaceGraph, FaceId, Surface};
-use crate::pairing::FaceRole;
+use crate::pairing::{FaceRole, Side};
 
 /// Size limits of the features to suppress, in mm.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -134,6 +135,49 @@ fn region_behind(graph: &FaceGraph, base: FaceId, lp: &[EdgeId], limit: f64) -> 
     (!region.is_empty() && diagonal(graph, &region) <= limit).then_some(region)
 }
 
+/// Both skins of one wall lie in `region`: the protrusion may be a wall standing on the skin (a hollow screw
+/// boss's tube, a tab), which a shell model keeps, not a solid standoff or pin whose material has no
+/// mid-surface of its own (see `stands_clear`).
+fn holds_wall(roles: &[FaceRole], region: &BTreeSet<FaceId>) -> bool {
+    let side_of = |f: &FaceId| match roles[*f] {
+        FaceRole::Pair { group, side } => Some((group, side)),
+        _ => None,
+    };
+    let sides: Vec<(usize, Side)> = region.iter().filter_map(side_of).collect();
+    sides.iter().any(|&(group, side)| sides.iter().any(|&(g, s)| g == group && s != side))
+}
+
+/// `region` stands at least as far out of the planar skin `base` (along its outward normal: a bore running on
+/// through the wall does not count) as that skin's wall is thick. A protrusion lower than the wall it stands
+/// on (a ring round a hole, a short collar) is a local thickening of that wall, not a wall: its mid-patch,
+/// reaching down to the wall's middle, would lie a third or more inside the wall. A curved skin has no plane
+/// to measure from: the protrusion counts as standing clear.
+fn stands_clear(
+    graph: &FaceGraph,
+    base: FaceId,
+    roles: &[FaceRole],
+    thickness: &[f64],
+    region: &BTreeSet<FaceId>,
+) -> bool {
+    let skin = &graph.faces[base];
+    let (Surface::Plane { .. }, FaceRole::Pair { group, .. }) = (&skin.surface, &roles[base]) else {
+        return true;
+    };
+    let height = region
+        .iter()
+        .flat_map(|&f| {
+            let face = &graph.faces[f];
+            let corners = [face.bbox.min, face.bbox.max];
+            match face.mesh.as_ref() {
+                Some(mesh) if !mesh.vertices.is_empty() => mesh.vertices.clone(),
+                _ => corners.to_vec(),
+            }
+        })
+        .map(|v| skin.normal.dot(v - skin.point))
+        .fold(0.0, f64::max);
+    height >= thickness[*group]
+}
+
 fn diagonal(graph: &FaceGraph, faces: &BTreeSet<FaceId>) -> f64 {
     let min = faces.iter().fold(DVec3::INFINITY, |m, &f| m.min(graph.faces[f].bbox.min));
     let max = faces.iter().fold(DVec3::NEG_INFINITY, |m, &f| m.max(graph.faces[f].bbox.max));
@@ -208,7 +252,14 @@ fn chamfer_width(graph: &FaceGraph, roles: &[FaceRole], face: FaceId) -> Option<
 /// their axis exactly, up to the float noise of the STEP file.
 const SAME_AXIS_SINE: f64 = 1e-6;
 
-pub fn recognise(graph: &FaceGraph, roles: &[FaceRole], limits: &Limits, tolerance: f64) -> Vec<Feature> {
+/// `thickness[g]`: the mean thickness of pair group g.
+pub fn recognise(
+    graph: &FaceGraph,
+    roles: &[FaceRole],
+    thickness: &[f64],
+    limits: &Limits,
+    tolerance: f64,
+) -> Vec<Feature> {
     let mut features: Vec<Feature> = Vec::new();
     let mut taken: BTreeSet<FaceId> = BTreeSet::new();
     let flood_limit = limits.boss_max.max(limits.hole_max);
@@ -228,7 +279,8 @@ pub fn recognise(graph: &FaceGraph, roles: &[FaceRole], limits: &Limits, toleran
             }
             let feature = if protrusion {
                 let size = diagonal(graph, &region);
-                (size <= limits.boss_max).then_some((FeatureKind::Boss, size))
+                let wall = holds_wall(roles, &region) && stands_clear(graph, face.id, roles, thickness, &region);
+                (size <= limits.boss_max && !wall).then_some((FeatureKind::Boss, size))
             } else {
                 hole_diameter(graph, &region, tolerance)
                     .filter(|&d| d <= limits.hole_max && !limits.keep_holes)

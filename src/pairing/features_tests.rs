@@ -45,6 +45,9 @@ fn plate_with(inner: [Surface; 2], convexity: Convexity, through: bool) -> (Face
     (g, roles)
 }
 
+/// The thickness of each pair group: the plate's (group 0) is its skins' distance apart, 3.
+const WALLS: &[f64] = &[3.0, 2.0, 2.0];
+
 fn hole_half() -> Surface {
     Surface::Cylinder { origin: DVec3::new(23.0, 23.0, 0.0), axis: DVec3::Z, radius: 3.0, convex: false }
 }
@@ -56,7 +59,7 @@ fn limits(keep_holes: bool) -> Limits {
 #[test]
 fn a_small_through_hole_is_one_feature_with_both_skin_loops_to_fill() {
     let (g, roles) = plate_with([hole_half(), hole_half()], Convexity::Convex, true);
-    let found = recognise(&g, &roles, &limits(false), 1e-3);
+    let found = recognise(&g, &roles, WALLS, &limits(false), 1e-3);
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!((found[0].kind, found[0].faces.clone(), found[0].size), (FeatureKind::Hole, vec![1, 2], 6.0));
     assert_eq!(found[0].fill, vec![0, 1, 2, 3]);
@@ -66,9 +69,9 @@ fn a_small_through_hole_is_one_feature_with_both_skin_loops_to_fill() {
 #[test]
 fn large_or_kept_holes_stay() {
     let (g, roles) = plate_with([hole_half(), hole_half()], Convexity::Convex, true);
-    assert!(recognise(&g, &roles, &limits(true), 1e-3).is_empty(), "--keep-holes");
+    assert!(recognise(&g, &roles, WALLS, &limits(true), 1e-3).is_empty(), "--keep-holes");
     let tight = Limits { hole_max: 5.0, ..limits(false) };
-    assert!(recognise(&g, &roles, &tight, 1e-3).is_empty(), "6 mm over a 5 mm limit");
+    assert!(recognise(&g, &roles, WALLS, &tight, 1e-3).is_empty(), "6 mm over a 5 mm limit");
 }
 
 #[test]
@@ -76,12 +79,33 @@ fn a_protrusion_behind_a_concave_loop_is_a_boss() {
     let side = Surface::Cylinder { origin: DVec3::new(23.0, 23.0, 0.0), axis: DVec3::Z, radius: 3.0, convex: true };
     let (g, roles) =
         plate_with([side, Surface::Plane { origin: DVec3::ZERO, normal: DVec3::Z }], Convexity::Concave, false);
-    let found = recognise(&g, &roles, &limits(false), 1e-3);
+    let found = recognise(&g, &roles, WALLS, &limits(false), 1e-3);
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!((found[0].kind, found[0].faces.clone()), (FeatureKind::Boss, vec![1, 2]));
     assert_eq!(found[0].fill, vec![0, 1]);
     let small = Limits { boss_max: 6.5, ..limits(false) };
-    assert!(recognise(&g, &roles, &small, 1e-3).is_empty(), "its box is 6 x 0 x 3: diagonal 6.7");
+    assert!(recognise(&g, &roles, WALLS, &small, 1e-3).is_empty(), "its box is 6 x 0 x 3: diagonal 6.7");
+}
+
+#[test]
+fn a_protrusion_holding_a_wall_and_standing_clear_of_its_skin_is_no_boss() {
+    // A hollow screw boss: its outside and its bore pair as a tube's wall.
+    let outside = Surface::Cylinder { origin: DVec3::new(23.0, 23.0, 0.0), axis: DVec3::Z, radius: 3.0, convex: true };
+    let bore = Surface::Cylinder { origin: DVec3::new(23.0, 23.0, 0.0), axis: DVec3::Z, radius: 1.0, convex: false };
+    let (mut g, mut roles) = plate_with([outside, bore], Convexity::Concave, false);
+    for face in &mut g.faces[1..3] {
+        // Standing 3 out of the plate's top (z = 3).
+        face.mesh.as_mut().unwrap().vertices.iter_mut().for_each(|v| v.z += 3.0);
+        (face.bbox.min.z, face.bbox.max.z) = (face.bbox.min.z + 3.0, face.bbox.max.z + 3.0);
+    }
+    assert_eq!(recognise(&g, &roles, WALLS, &limits(false), 1e-3).len(), 1, "unpaired sides: a solid boss");
+    roles[1] = FaceRole::Pair { group: 1, side: Side::A };
+    roles[2] = FaceRole::Pair { group: 1, side: Side::B };
+    assert!(recognise(&g, &roles, WALLS, &limits(false), 1e-3).is_empty(), "a tube's wall stands on the plate");
+    let thicker_plate = [3.5, 2.0];
+    assert_eq!(recognise(&g, &roles, &thicker_plate, &limits(false), 1e-3).len(), 1, "3 high on a 3.5 plate: a collar");
+    roles[2] = FaceRole::Pair { group: 2, side: Side::B };
+    assert_eq!(recognise(&g, &roles, WALLS, &limits(false), 1e-3).len(), 1, "skins of two walls are no wall");
 }
 
 /// A plate rim: top skin 0, bottom skin 1 (one wall), rim face 2, and a plane face 3 between the top
@@ -121,22 +145,22 @@ fn rim_with_bevel(turn: f64, onto_bottom: bool) -> (FaceGraph, Vec<FaceRole>) {
 #[test]
 fn a_narrow_bevel_between_a_skin_and_a_rim_is_a_chamfer() {
     let (g, roles) = rim_with_bevel(45.0, false);
-    let found = recognise(&g, &roles, &limits(false), 1e-3);
+    let found = recognise(&g, &roles, WALLS, &limits(false), 1e-3);
     assert_eq!(found.len(), 1, "{found:?}");
     assert_eq!((found[0].kind, found[0].faces.clone(), found[0].size), (FeatureKind::Chamfer, vec![3], 2.0));
     let narrow = Limits { fillet_max: 1.9, ..limits(false) };
-    assert!(recognise(&g, &roles, &narrow, 1e-3).is_empty(), "2 mm wide over a 1.9 mm limit");
+    assert!(recognise(&g, &roles, WALLS, &narrow, 1e-3).is_empty(), "2 mm wide over a 1.9 mm limit");
 }
 
 #[test]
 fn square_rims_tangent_facets_and_bevelled_wall_ends_are_no_chamfers() {
     for turn in [90.0, 5.0] {
         let (g, roles) = rim_with_bevel(turn, false);
-        assert!(recognise(&g, &roles, &limits(false), 1e-3).is_empty(), "turning {turn} degrees");
+        assert!(recognise(&g, &roles, WALLS, &limits(false), 1e-3).is_empty(), "turning {turn} degrees");
     }
     // Between the two skins of one wall the bevel is the wall's rim.
     let (g, roles) = rim_with_bevel(45.0, true);
-    assert!(recognise(&g, &roles, &limits(false), 1e-3).is_empty());
+    assert!(recognise(&g, &roles, WALLS, &limits(false), 1e-3).is_empty());
 }
 
 #[test]
@@ -145,5 +169,5 @@ fn a_mixed_loop_is_no_feature() {
     // One edge of each skin loop concave: neither a hole nor a boss from either side.
     g.edges[1].convexity = Convexity::Concave;
     g.edges[3].convexity = Convexity::Concave;
-    assert!(recognise(&g, &roles, &limits(false), 1e-3).is_empty());
+    assert!(recognise(&g, &roles, WALLS, &limits(false), 1e-3).is_empty());
 }
