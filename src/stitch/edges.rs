@@ -1,8 +1,6 @@
 //! The free edges of the stitched result: open (in the material: a joint not made) or on the rim, and how far
 //! an edge stops short of the part's boundary.
 
-use std::collections::BTreeSet;
-
 use super::{joint, FreeEdges, PatchInfo};
 use crate::geom::inside::SolidMesh;
 use crate::model::shapes::{EdgeProbe, Fused, FusedEdge};
@@ -142,29 +140,29 @@ const LIP_END_COS: f64 = 0.5;
 const STRAIGHT: f64 = 0.999;
 
 /// Sorts the free edges of the result into rim and open (the inside test of `decide`, or the edge stopping short
-/// of the boundary by more than the rim tolerance); also the patches with an open edge.
+/// of the boundary by more than the rim tolerance); also the open length of each patch (indexed by patch).
 pub(super) fn classify_free(
     fused: &Fused,
     free: &[(usize, usize)],
     probes: &[EdgeProbe],
     patches: &[PatchInfo],
     solids: &[SolidMesh],
-) -> (FreeEdges, BTreeSet<usize>) {
+) -> (FreeEdges, Vec<f64>) {
     let mut out = FreeEdges::default();
-    let mut open_patches = BTreeSet::new();
+    let mut open_by_patch = vec![0.0; patches.len()];
     for (&(edge, face), p) in free.iter().zip(probes) {
         let length = fused.edges[edge].length;
         // Short of the rim is open too: the material goes on past the edge, if only for a round's width.
         if open(fused, face, p, patches, solids) || shortfall(fused, face, p, patches, solids, false).is_some() {
             out.open_edges += 1;
             out.open_length += length;
-            open_patches.insert(fused.faces[face].patch);
+            open_by_patch[fused.faces[face].patch] += length;
         } else {
             out.rim_edges += 1;
             out.rim_length += length;
         }
     }
-    (out, open_patches)
+    (out, open_by_patch)
 }
 
 #[cfg(test)]

@@ -159,17 +159,18 @@ pub fn stitch<K: Kernel>(
     peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
     // The free edges of the result, probed once for both the rims pass and the final count.
     let (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
-    let (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
-    let mut state = State { fused, keep, branches, free, probes, counted, open_patches };
+    let (counted, open_by_patch) = classify_free(&fused, &free, &probes, patches, solids);
+    let mut state = State { fused, keep, branches, free, probes, counted, open_by_patch };
     let context = (patches, solids, fuzzy);
     state = later_pass(kernel, state, Pass::Rims, context, &mut tally, &mut failed_passes)?;
     state = later_pass(kernel, state, Pass::Partners, context, &mut tally, &mut failed_passes)?;
-    let State { fused, keep, branches, counted, open_patches, .. } = state;
+    let State { fused, keep, branches, counted, open_by_patch, .. } = state;
+    let open_patches = (0..open_by_patch.len()).filter(|&p| open_by_patch[p] > 0.0).collect();
     Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches, failed_passes })
 }
 
 /// The stitching between passes: the fused patches, the pieces kept, the branches dropped so far, the free edges
-/// with their probes and their count, and the patches with an open edge.
+/// with their probes and their count, and the open length of each patch.
 struct State {
     fused: Fused,
     keep: Vec<bool>,
@@ -177,25 +178,44 @@ struct State {
     free: Vec<(usize, usize)>,
     probes: Vec<EdgeProbe>,
     counted: FreeEdges,
-    open_patches: BTreeSet<usize>,
+    open_by_patch: Vec<f64>,
+}
+
+impl State {
+    /// Open length plus the length of the edges of broken pieces (see `broken_length`).
+    fn unstitched(&self) -> f64 {
+        self.counted.open_length + broken_length(&self.fused, &self.keep)
+    }
+
+    /// `unstitched`, per patch.
+    fn unstitched_by_patch(&self) -> Vec<f64> {
+        let mut out = self.open_by_patch.clone();
+        for (face, length) in broken_faces(&self.fused, &self.keep) {
+            out[self.fused.faces[face].patch] += length;
+        }
+        out
+    }
 }
 
 /// A pass after the first (`Pass::Rims` on the free edges as they are, `Pass::Partners` on them probed for
 /// partners), when edges are still open; its result peeled and counted. The result stands only when it leaves
 /// no more open length than it found: a later pass is there to close what the first left, and one that opens
 /// more (a strip's overshoot peeled with the piece it hung on, a fuse that split a patch apart) is undone with
-/// its joints, so each pass can only improve the stitching.
+/// its joints, so each pass can only improve the stitching. Undone, it is tried once more without the edges of
+/// the patches it set back and of those whose rays meet them within reach: the joints it made elsewhere stand
+/// when that leaves no more open than before.
 fn later_pass<K: Kernel>(
     kernel: &mut K,
     state: State,
     pass: Pass,
-    (patches, solids, fuzzy): (&[PatchInfo], &[SolidMesh], f64),
+    context: (&[PatchInfo], &[SolidMesh], f64),
     tally: &mut JointTally,
     failed_passes: &mut Vec<String>,
 ) -> Result<State, SidecarError> {
     if state.counted.open_edges == 0 {
         return Ok(state);
     }
+    let patches = context.0;
     let before = tally.clone();
     let probed;
     let (free, probes) = if pass == Pass::Partners {
@@ -204,33 +224,90 @@ fn later_pass<K: Kernel>(
     } else {
         (&state.free, &state.probes)
     };
+    let Some(tried) = try_pass(kernel, &state, free, probes, pass, context, tally, failed_passes)? else {
+        return Ok(state);
+    };
+    if tried.unstitched() <= state.unstitched() {
+        return Ok(tried);
+    }
+    *tally = before.clone();
+    let set_back = set_back(&state, &tried, patches);
+    let patch_of = |face: usize| state.fused.faces[face].patch;
+    let (rest, rest_probes): (Vec<(usize, usize)>, Vec<EdgeProbe>) = free
+        .iter()
+        .zip(probes)
+        .filter(|(&(_, face), p)| {
+            let reach = patches[patch_of(face)].reach;
+            let meets_set_back =
+                p.hits.iter().flatten().any(|h| h.distance <= reach && set_back.contains(&patch_of(h.face)));
+            !set_back.contains(&patch_of(face)) && !meets_set_back
+        })
+        .map(|(&edge, p)| (edge, p.clone()))
+        .unzip();
+    if rest.is_empty() || rest.len() == free.len() {
+        return Ok(state);
+    }
+    // A kernel failure of this second try is no failure of the pass: its first try stood as a whole.
+    let retried = try_pass(kernel, &state, &rest, &rest_probes, pass, context, tally, &mut Vec::new())?;
+    match retried {
+        Some(retried) if retried.unstitched() <= state.unstitched() => Ok(retried),
+        _ => {
+            *tally = before;
+            Ok(state)
+        }
+    }
+}
+
+/// Pass `pass` over the free edges `free` (probed `probes`) of `state`, peeled and counted; None when it grew
+/// nothing or the kernel failed it.
+#[allow(clippy::too_many_arguments)]
+fn try_pass<K: Kernel>(
+    kernel: &mut K,
+    state: &State,
+    free: &[(usize, usize)],
+    probes: &[EdgeProbe],
+    pass: Pass,
+    (patches, solids, fuzzy): (&[PatchInfo], &[SolidMesh], f64),
+    tally: &mut JointTally,
+    failed_passes: &mut Vec<String>,
+) -> Result<Option<State>, SidecarError> {
     let grown =
         run_pass(kernel, &state.fused, &state.keep, free, probes, patches, solids, fuzzy, pass, tally, failed_passes)?;
     let Some((fused, mut keep, more)) = grown else {
-        return Ok(state);
+        return Ok(None);
     };
     let mut branches = state.branches.clone();
     branches.extend(more);
     peel_dangling(&fused, &mut keep, &mut branches, patches, solids);
     let (free, probes) = free_and_probed(kernel, &fused, &keep, patches, false)?;
-    let (counted, open_patches) = classify_free(&fused, &free, &probes, patches, solids);
-    if counted.open_length + broken_length(&fused, &keep)
-        > state.counted.open_length + broken_length(&state.fused, &state.keep)
-    {
-        *tally = before;
-        return Ok(state);
-    }
-    Ok(State { fused, keep, branches, free, probes, counted, open_patches })
+    let (counted, open_by_patch) = classify_free(&fused, &free, &probes, patches, solids);
+    Ok(Some(State { fused, keep, branches, free, probes, counted, open_by_patch }))
+}
+
+/// The patches a pass left with more unstitched length than it found them with, beyond their rim tolerance
+/// (the same edges measured again on faces fused anew).
+fn set_back(before: &State, after: &State, patches: &[PatchInfo]) -> BTreeSet<usize> {
+    let (was, is) = (before.unstitched_by_patch(), after.unstitched_by_patch());
+    (0..patches.len()).filter(|&p| is[p] > was[p] + patches[p].on_rim).collect()
 }
 
 /// The length of the edges of the kept faces that fail the kernel's check: such a face is left out when the file
 /// is written (`output::shells::write_checked`), which opens its edges, so a pass that makes it opens them.
 fn broken_length(fused: &Fused, keep: &[bool]) -> f64 {
+    broken_faces(fused, keep).iter().map(|&(_, length)| length).sum()
+}
+
+/// The kept faces that fail the kernel's check, sorted, each with the length of its edges (an edge between two
+/// of them counted once, for the first).
+fn broken_faces(fused: &Fused, keep: &[bool]) -> Vec<(usize, f64)> {
     let broken: BTreeSet<usize> = fused.invalid.iter().copied().filter(|&f| keep[f]).collect();
-    if broken.is_empty() {
-        return 0.0;
+    let mut out: Vec<(usize, f64)> = broken.into_iter().map(|f| (f, 0.0)).collect();
+    for e in &fused.edges {
+        if let Some(k) = out.iter().position(|(f, _)| e.faces.contains(f)) {
+            out[k].1 += e.length;
+        }
     }
-    fused.edges.iter().filter(|e| e.faces.iter().any(|f| broken.contains(f))).map(|e| e.length).sum()
+    out
 }
 
 /// One pass of stitching, growing curved edges to the rim too; when the kernel fails it (a fuse that gives up),

@@ -395,3 +395,58 @@ fn a_later_pass_that_breaks_a_face_counts_its_edges_as_open_and_is_undone() {
     assert_eq!(rims_result_with_face_invalid(true).fused.handle, 40, "the joints pass's result stands");
     assert_eq!(rims_result_with_face_invalid(false).fused.handle, 41, "the rims pass's result stands");
 }
+
+#[test]
+fn a_later_pass_that_sets_one_patch_back_is_made_again_without_that_patchs_edges() {
+    // Two plates' patches in one slab (0..50 x 0..20, 2 thick), each with an edge 0.7 short of the rim that the
+    // joints pass leaves where it was. The rims pass grows both: patch 1's edge closes, but patch 2's strip
+    // leaves a new open edge 15 long across it (x = 30): 25 open against 20 before, so the pass is undone, and
+    // made again growing patch 1's edge only, which stands (10 open).
+    let (a0, b0) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
+    let (a1, b1) = (DVec3::new(0.7, 0.0, 1.0), DVec3::new(0.7, 10.0, 1.0));
+    let (c, d) = (DVec3::new(30.0, 0.0, 1.0), DVec3::new(30.0, 15.0, 1.0));
+    let faces = || vec![face(0, DVec3::Z), face(1, DVec3::Z)];
+    let both = || vec![edge(a0, b0, &[0]), edge(a1, b1, &[1])];
+    let fused = fused(faces(), both());
+    let (p0, p1) = (probe(a0, b0, DVec3::Z, DVec3::X, &[]), probe(a1, b1, DVec3::Z, -DVec3::X, &[]));
+    let pcd = probe(c, d, DVec3::Z, DVec3::X, &[]);
+    let strips = |k: usize| json!(vec![json!({"area": 7.0, "error": null}); k]);
+    let replies = vec![
+        json!({"edges": [p0, p1]}),
+        json!({"handle": 20, "strips": strips(2), "corners": []}),
+        json!({"handle": 30, "faces": 1}),
+        json!({"handle": 31, "faces": 1}),
+        json!({"handle": 40, "faces": faces(), "edges": both()}),
+        json!({"edges": [p0, p1]}),
+        // The rims pass, growing both edges.
+        json!({"handle": 21, "strips": strips(2), "corners": []}),
+        json!({"handle": 32, "faces": 1}),
+        json!({"handle": 33, "faces": 1}),
+        json!({"handle": 41, "faces": faces(), "edges": [edge(a1, b1, &[1]), edge(c, d, &[1])]}),
+        json!({"edges": [p1, pcd]}),
+        // Made again without patch 2's edge.
+        json!({"handle": 22, "strips": strips(1), "corners": []}),
+        json!({"handle": 34, "faces": 1}),
+        json!({"handle": 35, "faces": 1}),
+        json!({"handle": 42, "faces": faces(), "edges": [edge(a1, b1, &[1])]}),
+        json!({"edges": [p1]}),
+        // The partners pass finds no partner.
+        json!({"edges": [p1]}),
+    ];
+    let patches = [info(2.0, (1, 0)), info(2.0, (2, 0))];
+    let (stitched, kernel) = run(&fused, &patches, (DVec3::ZERO, DVec3::new(50.0, 20.0, 2.0)), replies);
+
+    let extends: Vec<usize> = kernel
+        .requests
+        .iter()
+        .filter_map(|r| match r {
+            Request::ExtendEdges { strips, .. } => Some(strips.len()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(extends, [2, 2, 1], "joints, rims, rims again with patch 1's edge only");
+    assert_eq!(stitched.fused.handle, 42, "the rims pass made again stands");
+    assert!(stitched.failed_passes.is_empty());
+    assert_eq!((stitched.free.open_edges, stitched.free.open_length), (1, 10.0));
+    assert_eq!(stitched.open_patches, BTreeSet::from([1]));
+}
