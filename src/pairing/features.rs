@@ -14,7 +14,8 @@
 //! - A boss, protrusion or tab: an inner loop of a skin whose edges are all concave (the CLoop of Lu, Gadh &
 //!   Tautges), opening onto faces that stay within a box of diagonal <= `boss_max` (a hole through it
 //!   included) and that hold no wall: a protrusion with both skins of a wall among its faces (a hollow
-//!   screw boss, a tab) is a wall standing on the skin and keeps its mid-patch.
+//!   screw boss, a tab) standing out of the skin at least as far as the skin's wall is thick is a wall
+//!   standing on that wall and keeps its mid-patch.
 //!
 //! The region behind a loop is flooded over face adjacency, never back into the skin holding the loop and
 //! never into a face larger than the limit: a through hole's region stops at the opposite skin, whose loop
