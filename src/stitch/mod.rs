@@ -201,9 +201,9 @@ impl State {
 /// partners), when edges are still open; its result peeled and counted. The result stands only when it leaves
 /// no more open length than it found: a later pass is there to close what the first left, and one that opens
 /// more (a strip's overshoot peeled with the piece it hung on, a fuse that split a patch apart) is undone with
-/// its joints, so each pass can only improve the stitching. Undone, it is tried once more without the edges of
-/// the patches it set back and of those whose rays meet them within reach: the joints it made elsewhere stand
-/// when that leaves no more open than before.
+/// its joints, so each pass can only improve the stitching. Undone, it is tried again (up to `MORE_TRIES` times)
+/// without the edges of the patches its tries set back and of those whose rays meet them within reach: the
+/// joints it made elsewhere stand when that leaves no more open than before.
 fn later_pass<K: Kernel>(
     kernel: &mut K,
     state: State,
@@ -230,33 +230,46 @@ fn later_pass<K: Kernel>(
     if tried.unstitched() <= state.unstitched() {
         return Ok(tried);
     }
-    *tally = before.clone();
-    let set_back = set_back(&state, &tried, patches);
+    // Each try that sets patches back is made again without their edges too, while edges are left to grow. A
+    // kernel failure of a try after the first is no failure of the pass: its first try stood as a whole.
     let patch_of = |face: usize| state.fused.faces[face].patch;
-    let (rest, rest_probes): (Vec<(usize, usize)>, Vec<EdgeProbe>) = free
-        .iter()
-        .zip(probes)
-        .filter(|(&(_, face), p)| {
-            let reach = patches[patch_of(face)].reach;
-            let meets_set_back =
-                p.hits.iter().flatten().any(|h| h.distance <= reach && set_back.contains(&patch_of(h.face)));
-            !set_back.contains(&patch_of(face)) && !meets_set_back
-        })
-        .map(|(&edge, p)| (edge, p.clone()))
-        .unzip();
-    if rest.is_empty() || rest.len() == free.len() {
-        return Ok(state);
-    }
-    // A kernel failure of this second try is no failure of the pass: its first try stood as a whole.
-    let retried = try_pass(kernel, &state, &rest, &rest_probes, pass, context, tally, &mut Vec::new())?;
-    match retried {
-        Some(retried) if retried.unstitched() <= state.unstitched() => Ok(retried),
-        _ => {
-            *tally = before;
-            Ok(state)
+    let mut excluded = BTreeSet::new();
+    let mut last = tried;
+    let mut growing = free.len();
+    for _ in 0..MORE_TRIES {
+        *tally = before.clone();
+        excluded.extend(set_back(&state, &last, patches));
+        let (rest, rest_probes): (Vec<(usize, usize)>, Vec<EdgeProbe>) = free
+            .iter()
+            .zip(probes)
+            .filter(|(&(_, face), p)| {
+                let reach = patches[patch_of(face)].reach;
+                let meets_excluded =
+                    p.hits.iter().flatten().any(|h| h.distance <= reach && excluded.contains(&patch_of(h.face)));
+                !excluded.contains(&patch_of(face)) && !meets_excluded
+            })
+            .map(|(&edge, p)| (edge, p.clone()))
+            .unzip();
+        if rest.is_empty() || rest.len() == growing {
+            break;
         }
+        growing = rest.len();
+        let Some(retried) = try_pass(kernel, &state, &rest, &rest_probes, pass, context, tally, &mut Vec::new())?
+        else {
+            break;
+        };
+        if retried.unstitched() <= state.unstitched() {
+            return Ok(retried);
+        }
+        last = retried;
     }
+    *tally = before;
+    Ok(state)
 }
+
+/// How many times an undone later pass is made again without the patches it set back: each try costs a fuse of
+/// the whole part, and a third try rescued joints on a real part where the second set another patch back.
+const MORE_TRIES: usize = 2;
 
 /// Pass `pass` over the free edges `free` (probed `probes`) of `state`, peeled and counted; None when it grew
 /// nothing or the kernel failed it.

@@ -450,3 +450,55 @@ fn a_later_pass_that_sets_one_patch_back_is_made_again_without_that_patchs_edges
     assert_eq!((stitched.free.open_edges, stitched.free.open_length), (1, 10.0));
     assert_eq!(stitched.open_patches, BTreeSet::from([1]));
 }
+
+#[test]
+fn a_later_pass_is_made_again_while_each_try_sets_another_patch_back() {
+    // Three plates' patches in one slab (0..50 x 0..30, 2 thick), each with an edge 0.7 short of the rim, 10 long
+    // (30 open). The rims pass's first try opens 15 more on patch 2 (35), its second, without patch 2's edge, 25
+    // more on patch 3 (45); the third, with patch 1's edge only, closes it (20 open) and stands.
+    let (a0, b0) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
+    let (a1, b1) = (DVec3::new(0.7, 0.0, 1.0), DVec3::new(0.7, 10.0, 1.0));
+    let (a2, b2) = (DVec3::new(49.3, 20.0, 1.0), DVec3::new(49.3, 30.0, 1.0));
+    let (c, d) = (DVec3::new(30.0, 0.0, 1.0), DVec3::new(30.0, 15.0, 1.0));
+    let (g, h) = (DVec3::new(20.0, 5.0, 1.0), DVec3::new(20.0, 30.0, 1.0));
+    let faces = || vec![face(0, DVec3::Z), face(1, DVec3::Z), face(2, DVec3::Z)];
+    let (e0, e1, e2) = (edge(a0, b0, &[0]), edge(a1, b1, &[1]), edge(a2, b2, &[2]));
+    let (p0, p1, p2) = (
+        probe(a0, b0, DVec3::Z, DVec3::X, &[]),
+        probe(a1, b1, DVec3::Z, -DVec3::X, &[]),
+        probe(a2, b2, DVec3::Z, DVec3::X, &[]),
+    );
+    let (pcd, pgh) = (probe(c, d, DVec3::Z, DVec3::X, &[]), probe(g, h, DVec3::Z, DVec3::X, &[]));
+    // One pass: the strips made, a gather per patch, the fuse leaving `edges` free, and their probes.
+    let pass = |k: usize, strips: usize, edges: Vec<Value>, probes: Vec<Value>| {
+        vec![
+            json!({"handle": 20 + k, "strips": vec![json!({"area": 7.0, "error": null}); strips], "corners": []}),
+            json!({"handle": 30 + 3 * k, "faces": 1}),
+            json!({"handle": 31 + 3 * k, "faces": 1}),
+            json!({"handle": 32 + 3 * k, "faces": 1}),
+            json!({"handle": 40 + k, "faces": faces(), "edges": edges}),
+            json!({"edges": probes}),
+        ]
+    };
+    let all = || vec![e0.clone(), e1.clone(), e2.clone()];
+    let mut replies = vec![json!({"edges": [p0, p1, p2]})];
+    replies.extend(pass(0, 3, all(), vec![p0.clone(), p1.clone(), p2.clone()]));
+    replies.extend(pass(1, 3, vec![e1.clone(), edge(c, d, &[1]), e2.clone()], vec![p1.clone(), pcd, p2.clone()]));
+    replies.extend(pass(2, 2, vec![e1.clone(), e2.clone(), edge(g, h, &[2])], vec![p1.clone(), p2.clone(), pgh]));
+    replies.extend(pass(3, 1, vec![e1.clone(), e2.clone()], vec![p1.clone(), p2.clone()]));
+    replies.push(json!({"edges": [p1, p2]}));
+    let patches = [info(2.0, (1, 0)), info(2.0, (2, 0)), info(2.0, (3, 0))];
+    let (stitched, kernel) = run(&fused(faces(), all()), &patches, (DVec3::ZERO, DVec3::new(50.0, 30.0, 2.0)), replies);
+
+    let extends: Vec<usize> = kernel
+        .requests
+        .iter()
+        .filter_map(|r| match r {
+            Request::ExtendEdges { strips, .. } => Some(strips.len()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(extends, [3, 3, 2, 1], "joints, then the rims pass three times");
+    assert_eq!(stitched.fused.handle, 43, "the third try stands");
+    assert_eq!((stitched.free.open_edges, stitched.free.open_length), (2, 20.0));
+}
