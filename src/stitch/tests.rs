@@ -93,6 +93,24 @@ fn extend_request(
     }
 }
 
+/// Whether each gather request merges its faces, in order.
+fn gathers_unified(kernel: &FakeKernel) -> Vec<bool> {
+    let unified = |r: &Request| match r {
+        Request::Gather { unify, .. } => Some(unify.is_some()),
+        _ => None,
+    };
+    kernel.requests.iter().filter_map(unified).collect()
+}
+
+/// The number of strips of each extend_edges request, in order.
+fn strips_per_extend(kernel: &FakeKernel) -> Vec<usize> {
+    let strips = |r: &Request| match r {
+        Request::ExtendEdges { strips, .. } => Some(strips.len()),
+        _ => None,
+    };
+    kernel.requests.iter().filter_map(strips).collect()
+}
+
 fn report(patches: Vec<usize>, kind: &'static str, edges: usize, length: f64) -> JointReport {
     JointReport { patches, kind, status: "extended", edges, length }
 }
@@ -123,14 +141,7 @@ fn a_rib_standing_on_a_plate_grows_onto_it_as_a_t_and_the_plates_rim_stays_free(
     assert!(strips[0].lengths.iter().all(|&l| (l - 1.5).abs() < 1e-12), "{:?}", strips[0].lengths);
     assert!(corners.is_empty());
     // Only the rib's patch has a strip to merge with its pieces.
-    let unify: Vec<bool> = kernel
-        .requests
-        .iter()
-        .filter_map(|r| match r {
-            Request::Gather { unify, .. } => Some(unify.is_some()),
-            _ => None,
-        })
-        .collect();
+    let unify = gathers_unified(&kernel);
     assert_eq!(unify, [false, true], "the rib's patch is merged with its strip");
     assert_eq!(stitched.joints, [report(vec![1, 2], "t", 1, 10.0)]);
     assert_eq!(stitched.free, FreeEdges::default(), "the fused result has no free edge left");
@@ -207,14 +218,7 @@ fn two_levels_of_a_wall_at_a_thickness_step_are_bridged_by_a_ramp() {
     }
     assert_eq!(corners[0].normal, DVec3::Z, "a ramp faces its patch's way");
     // The ramp joins the thin level's patch: only its gather merges a strip.
-    let unify: Vec<bool> = kernel
-        .requests
-        .iter()
-        .filter_map(|r| match r {
-            Request::Gather { unify, .. } => Some(unify.is_some()),
-            _ => None,
-        })
-        .collect();
+    let unify = gathers_unified(&kernel);
     assert_eq!(unify, [true, false]);
     assert_eq!(stitched.joints, [report(vec![1, 2], "step", 2, 20.0)]);
 }
@@ -436,14 +440,7 @@ fn a_later_pass_that_sets_one_patch_back_is_made_again_without_that_patchs_edges
     let patches = [info(2.0, (1, 0)), info(2.0, (2, 0))];
     let (stitched, kernel) = run(&fused, &patches, (DVec3::ZERO, DVec3::new(50.0, 20.0, 2.0)), replies);
 
-    let extends: Vec<usize> = kernel
-        .requests
-        .iter()
-        .filter_map(|r| match r {
-            Request::ExtendEdges { strips, .. } => Some(strips.len()),
-            _ => None,
-        })
-        .collect();
+    let extends = strips_per_extend(&kernel);
     assert_eq!(extends, [2, 2, 1], "joints, rims, rims again with patch 1's edge only");
     assert_eq!(stitched.fused.handle, 42, "the rims pass made again stands");
     assert!(stitched.failed_passes.is_empty());
@@ -490,14 +487,7 @@ fn a_later_pass_is_made_again_while_each_try_sets_another_patch_back() {
     let patches = [info(2.0, (1, 0)), info(2.0, (2, 0)), info(2.0, (3, 0))];
     let (stitched, kernel) = run(&fused(faces(), all()), &patches, (DVec3::ZERO, DVec3::new(50.0, 30.0, 2.0)), replies);
 
-    let extends: Vec<usize> = kernel
-        .requests
-        .iter()
-        .filter_map(|r| match r {
-            Request::ExtendEdges { strips, .. } => Some(strips.len()),
-            _ => None,
-        })
-        .collect();
+    let extends = strips_per_extend(&kernel);
     assert_eq!(extends, [3, 3, 2, 1], "joints, then the rims pass three times");
     assert_eq!(stitched.fused.handle, 43, "the third try stands");
     assert_eq!((stitched.free.open_edges, stitched.free.open_length), (2, 20.0));
