@@ -46,6 +46,7 @@ impl<T: Transport> Client<T> {
                     "the sidecar speaks protocol {} but midsurf expects {PROTOCOL_VERSION}; run scripts/setup",
                     hello.protocol
                 ),
+                patches: Vec::new(),
             });
         }
         client.hello = hello;

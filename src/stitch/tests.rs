@@ -449,6 +449,49 @@ fn a_later_pass_that_sets_one_patch_back_is_made_again_without_that_patchs_edges
 }
 
 #[test]
+fn a_later_pass_whose_fuse_breaks_a_patch_is_made_again_without_that_patchs_edges() {
+    // The two plates above, through the joints pass. The rims pass grows both edges and its fuse fails: the
+    // pieces of a face of patch 2 (the second patch of the request) lost area. Made again without patch 2's
+    // edge, its fuse goes through and patch 1's edge closes: the pass stands and is no failure.
+    let (a0, b0) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
+    let (a1, b1) = (DVec3::new(0.7, 0.0, 1.0), DVec3::new(0.7, 10.0, 1.0));
+    let faces = || vec![face(0, DVec3::Z), face(1, DVec3::Z)];
+    let both = || vec![edge(a0, b0, &[0]), edge(a1, b1, &[1])];
+    let fused = fused(faces(), both());
+    let (p0, p1) = (probe(a0, b0, DVec3::Z, DVec3::X, &[]), probe(a1, b1, DVec3::Z, -DVec3::X, &[]));
+    let strips = |k: usize| json!(vec![json!({"area": 7.0, "error": null}); k]);
+    let lost = json!({"error": {"code": "kernel_error", "message": "a split lost area", "patches": [1]}});
+    let replies = vec![
+        json!({"edges": [p0, p1]}),
+        json!({"handle": 20, "strips": strips(2), "corners": []}),
+        json!({"handle": 30, "faces": 1}),
+        json!({"handle": 31, "faces": 1}),
+        json!({"handle": 40, "faces": faces(), "edges": both()}),
+        json!({"edges": [p0, p1]}),
+        // The rims pass, growing both edges: its fuse fails on patch 2's faces.
+        json!({"handle": 21, "strips": strips(2), "corners": []}),
+        json!({"handle": 32, "faces": 1}),
+        json!({"handle": 33, "faces": 1}),
+        lost,
+        // Made again without patch 2's edge.
+        json!({"handle": 22, "strips": strips(1), "corners": []}),
+        json!({"handle": 34, "faces": 1}),
+        json!({"handle": 35, "faces": 1}),
+        json!({"handle": 42, "faces": faces(), "edges": [edge(a1, b1, &[1])]}),
+        json!({"edges": [p1]}),
+        // The partners pass finds no partner.
+        json!({"edges": [p1]}),
+    ];
+    let patches = [info(2.0, (1, 0)), info(2.0, (2, 0))];
+    let (stitched, kernel) = run(&fused, &patches, (DVec3::ZERO, DVec3::new(50.0, 20.0, 2.0)), replies);
+
+    assert_eq!(strips_per_extend(&kernel), [2, 2, 1], "joints, rims, rims again with patch 1's edge only");
+    assert_eq!(stitched.fused.handle, 42, "the rims pass made again stands");
+    assert!(stitched.failed_passes.is_empty(), "{:?}", stitched.failed_passes);
+    assert_eq!((stitched.free.open_edges, stitched.free.open_length), (1, 10.0));
+}
+
+#[test]
 fn a_later_pass_is_made_again_while_each_try_sets_another_patch_back() {
     // Three plates' patches in one slab (0..50 x 0..30, 2 thick), each with an edge 0.7 short of the rim, 10 long
     // (30 open). The rims pass's first try opens 15 more on patch 2 (35), its second, without patch 2's edge, 25
