@@ -75,6 +75,26 @@ def test_a_face_without_a_wire_is_named_broken(tmp_path):
     assert readback.check_written(str(tmp_path / "box.step"), bounded).valid
 
 
+def test_an_empty_face_written_is_named_broken_not_a_crash(tmp_path):
+    # A face with neither surface nor wire has a void bounding box, whose corners OCCT refuses to give: the
+    # check names the face instead of failing the write.
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+    from OCP.TopoDS import TopoDS_Face
+
+    faces = box_faces()
+    empty = TopoDS_Face()
+    BRep_Builder().MakeFace(empty)
+    assert readback._box(empty) is None
+    written = shells_of([faces, [empty]])
+    path = str(tmp_path / "empty.step")
+    writer = STEPControl_Writer()
+    writer.Transfer(written, STEPControl_AsIs)
+    writer.Write(path)
+    check = readback.check_written(path, written)
+    assert not check.valid
+    assert indexed_map(written, TopAbs_FACE).FindIndex(empty) - 1 in check.invalid
+
+
 def test_a_broken_face_read_back_in_another_order_names_the_face_it_lies_on(monkeypatch):
     # As many faces read as written, but in another order (a reader may take shells apart and put them back
     # otherwise): the broken face is named by the written face it lies on, not by its place in the file.

@@ -58,7 +58,7 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
     lost = read_empty | unbounded
     written = [own.FindKey(j + 1) for j in range(own.Size())]
     boxes = [_box(face) for face in written]
-    extents = (max(abs(c) for c in box) for box in boxes)
+    extents = (max(abs(c) for c in box) for box in boxes if box is not None)
     size = max((e for e in extents if e < UNBOUNDED_BOX), default=1.0)
     reach = READBACK_MATCH * max(size, 1.0)
     same_count = len(back_faces) == own.Size()
@@ -93,7 +93,9 @@ def _lost_faces(back: TopoDS_Shape, shape: TopoDS_Shape, own) -> set[int]:
     return lost
 
 
-def _origin(face: TopoDS_Shape, written: list[TopoDS_Shape], boxes: list[tuple[float, ...]], reach: float) -> int | None:
+def _origin(
+    face: TopoDS_Shape, written: list[TopoDS_Shape], boxes: list[tuple[float, ...] | None], reach: float
+) -> int | None:
     """The written face on which most of the midpoints of `face`'s edges lie (within `reach`); when none holds
     half of them (the reader rebuilt the face off its surface), the face nearest to them (by the median
     distance). A broken face often has an edge or two off its surface, which is why it is broken."""
@@ -102,10 +104,10 @@ def _origin(face: TopoDS_Shape, written: list[TopoDS_Shape], boxes: list[tuple[f
         return None
     # Only faces near the broken one can be its origin: their boxes reach its edges within its own size.
     own = _box(face)
-    margin = reach + max(own[i + 3] - own[i] for i in range(3))
+    margin = reach + (max(own[i + 3] - own[i] for i in range(3)) if own is not None else 0.0)
     scored = []
     for j, box in enumerate(boxes):
-        if not any(all(box[i] - margin <= p[i] <= box[i + 3] + margin for i in range(3)) for p in points):
+        if box is None or not any(all(box[i] - margin <= p[i] <= box[i + 3] + margin for i in range(3)) for p in points):
             continue
         distances = sorted(_distance_to(written[j], p) for p in points)
         on = [d for d in distances if d <= reach]
@@ -145,8 +147,12 @@ def _distance_to(face: TopoDS_Shape, point: tuple[float, float, float]) -> float
     return float("inf") if distance is None else distance
 
 
-def _box(face: TopoDS_Shape) -> tuple[float, ...]:
+def _box(face: TopoDS_Shape) -> tuple[float, ...] | None:
+    """(xmin, ymin, zmin, xmax, ymax, zmax); None for a face with nothing to bound (no surface, no edge with a
+    curve: OCCT raises on the corners of its void box), which lies nowhere another face could be matched."""
     box = Bnd_Box()
     BRepBndLib.Add_s(face, box)
+    if box.IsVoid():
+        return None
     low, high = box.CornerMin(), box.CornerMax()
     return (low.X(), low.Y(), low.Z(), high.X(), high.Y(), high.Z())
