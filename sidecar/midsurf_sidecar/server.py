@@ -159,10 +159,7 @@ def _test_crash(op: str) -> None:
 
 
 def _err(request_id: int | None, exc: OpError) -> dict[str, Any]:
-    err: dict[str, Any] = {"code": exc.code, "message": one_line(exc)}
-    if exc.patches:
-        err["patches"] = exc.patches
-    return {"id": request_id, "err": err}
+    return {"id": request_id, "err": {"code": exc.code, "message": one_line(exc)}}
 
 
 def encode(reply: dict[str, Any]) -> str:

@@ -43,35 +43,6 @@ def on_line(edge, **fixed):
     return all(p[axes[k]] == pytest.approx(v, abs=1e-7) for p in edge["points"] for k, v in fixed.items())
 
 
-def test_a_fuse_whose_pieces_lose_area_names_the_patches_of_those_faces(client, monkeypatch):
-    # OCCT at times returns a split whose pieces drop part of a face with no error (check_area_kept): the error
-    # names the patch of each face short of its area, as an index into the request's patches, also when the
-    # bodies are fused apart (each body's fuse numbers its own patches). Here the last face checked loses area.
-    from midsurf_sidecar.fuse import patch_fuse
-    from midsurf_sidecar.protocol.errors import AreaLost
-
-    def lose_the_last(builder, faces, fuzzy):
-        raise AreaLost("a split lost area", [len(faces) - 1])
-
-    monkeypatch.setattr(patch_fuse, "check_area_kept", lose_the_last)
-    handles = put_patches(client, horizontal(), vertical(1.0), vertical(20.0))
-    assert client.err("fuse", patches=handles, fuzzy=1e-6)["patches"] == [2]
-    # Body 0 holds patches 0 and 2 and is fused first: its last face is patch 2's.
-    assert client.err("fuse", patches=handles, fuzzy=1e-6, bodies=[0, 1, 0])["patches"] == [2]
-
-
-def test_a_fuse_failure_naming_no_face_names_no_patch(client, monkeypatch):
-    from midsurf_sidecar.fuse import patch_fuse
-    from midsurf_sidecar.protocol.errors import AreaLost
-
-    def lose_unnamed(builder, faces, fuzzy):
-        raise AreaLost("a split lost area", [])
-
-    monkeypatch.setattr(patch_fuse, "check_area_kept", lose_unnamed)
-    handles = put_patches(client, horizontal(), vertical(1.0))
-    assert "patches" not in client.err("fuse", patches=handles, fuzzy=1e-6)
-
-
 def test_l_corner_crossing_is_shared_by_four_faces(client):
     fused = fuse(client, put_patches(client, horizontal(), vertical(1.0)))
     faces = fused["faces"]

@@ -46,7 +46,6 @@ impl<T: Transport> Client<T> {
                     "the sidecar speaks protocol {} but midsurf expects {PROTOCOL_VERSION}; run scripts/setup",
                     hello.protocol
                 ),
-                patches: Vec::new(),
             });
         }
         client.hello = hello;

@@ -36,10 +36,6 @@ impl Kernel for FakeKernel {
                 op: request.op().to_string(),
                 code: error["code"].as_str().unwrap_or("kernel_failed").to_string(),
                 message: error["message"].as_str().unwrap_or_default().to_string(),
-                patches: error["patches"]
-                    .as_array()
-                    .map(|list| list.iter().filter_map(|p| p.as_u64()).map(|p| p as usize).collect())
-                    .unwrap_or_default(),
             });
         }
         serde_json::from_value(reply).map_err(|e| SidecarError::BadReply {

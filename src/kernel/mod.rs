@@ -100,9 +100,8 @@ impl<T: Transport> Kernel for Client<T> {
 pub enum SidecarError {
     /// The Python interpreter or the sidecar package could not be found or started.
     Spawn { why: String },
-    /// The op ran and failed: the sidecar's own error code and message, and the patches (indices into the
-    /// request's) whose faces it broke, when it can name them (a fuse whose pieces lost area).
-    Op { op: String, code: String, message: String, patches: Vec<usize> },
+    /// The op ran and failed: the sidecar's own error code and message.
+    Op { op: String, code: String, message: String },
     /// The process ended (crash, segfault, killed) while we waited for `op`.
     Died { op: String, stderr: String },
     /// No reply to `op` within its timeout; the process was killed.
@@ -117,14 +116,6 @@ impl SidecarError {
         match self {
             SidecarError::Op { code, .. } => Some(code),
             _ => None,
-        }
-    }
-
-    /// The patches a failed op named (see `Op`), none for any other error.
-    pub fn patches(&self) -> &[usize] {
-        match self {
-            SidecarError::Op { patches, .. } => patches,
-            _ => &[],
         }
     }
 }

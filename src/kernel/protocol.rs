@@ -247,11 +247,6 @@ pub fn decode(id: u64, op: &str, line: &str) -> Result<Value, SidecarError> {
             op: op.to_string(),
             code: err.get("code").and_then(Value::as_str).unwrap_or("unknown").to_string(),
             message: err.get("message").and_then(Value::as_str).unwrap_or("").to_string(),
-            patches: err
-                .get("patches")
-                .and_then(Value::as_array)
-                .map(|list| list.iter().filter_map(Value::as_u64).map(|p| p as usize).collect())
-                .unwrap_or_default(),
         }),
         None => Err(bad("neither ok nor err".to_string())),
     }

@@ -233,16 +233,7 @@ pub(super) fn grow<K: Kernel>(
         handles.push(gathered.handle);
     }
     let bodies: Vec<usize> = order.iter().map(|&k| patches[k].body).collect();
-    // A failure naming the patches whose faces it broke names them as `patches` numbers them.
-    let mut again = kernel.fuse(handles, &bodies, fuzzy, FuseKind::Again { settled }).map_err(|e| match e {
-        SidecarError::Op { op, code, message, patches: named } => SidecarError::Op {
-            op,
-            code,
-            message,
-            patches: named.iter().filter_map(|&i| order.get(i).copied()).collect(),
-        },
-        other => other,
-    })?;
+    let mut again = kernel.fuse(handles, &bodies, fuzzy, FuseKind::Again { settled })?;
     for face in &mut again.faces {
         face.patch = order[face.patch];
     }

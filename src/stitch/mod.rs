@@ -139,7 +139,7 @@ pub fn stitch<K: Kernel>(
     fuzzy: f64,
 ) -> Result<Stitched, SidecarError> {
     let mut tally = JointTally::default();
-    let mut failed_passes: Vec<FailedPass> = Vec::new();
+    let mut failed_passes = Vec::new();
     let (free, probes) = free_and_probed(kernel, fused, keep, patches, true)?;
     let grown = run_pass(
         kernel,
@@ -166,12 +166,8 @@ pub fn stitch<K: Kernel>(
     state = later_pass(kernel, state, Pass::Partners, context, &mut tally, &mut failed_passes)?;
     let State { fused, keep, branches, counted, open_by_patch, .. } = state;
     let open_patches = (0..open_by_patch.len()).filter(|&p| open_by_patch[p] > 0.0).collect();
-    let failed_passes = failed_passes.into_iter().map(|(what, _)| what).collect();
     Ok(Stitched { fused, keep, branches, joints: tally.reports(), free: counted, open_patches, failed_passes })
 }
-
-/// A pass the kernel failed: what failed, and the patches the failure named (their faces lost area in the fuse).
-type FailedPass = (String, Vec<usize>);
 
 /// The stitching between passes: the fused patches, the pieces kept, the branches dropped so far, the free edges
 /// with their probes and their count, and the open length of each patch.
@@ -207,16 +203,14 @@ impl State {
 /// more (a strip's overshoot peeled with the piece it hung on, a fuse that split a patch apart) is undone with
 /// its joints, so each pass can only improve the stitching. Undone, it is tried again (up to `MORE_TRIES` times)
 /// without the edges of the patches its tries set back and of those whose rays meet them within reach: the
-/// joints it made elsewhere stand when that leaves no more open than before. A try the kernel failed naming
-/// the patches whose faces its fuse broke (pieces short of their face's area) is made again the same way,
-/// without those patches; a failure naming none, or a last try that fails, leaves the pass failed.
+/// joints it made elsewhere stand when that leaves no more open than before.
 fn later_pass<K: Kernel>(
     kernel: &mut K,
     state: State,
     pass: Pass,
     context: (&[PatchInfo], &[SolidMesh], f64),
     tally: &mut JointTally,
-    failed_passes: &mut Vec<FailedPass>,
+    failed_passes: &mut Vec<String>,
 ) -> Result<State, SidecarError> {
     if state.counted.open_edges == 0 {
         return Ok(state);
@@ -230,29 +224,21 @@ fn later_pass<K: Kernel>(
     } else {
         (&state.free, &state.probes)
     };
-    let failures = failed_passes.len();
-    let mut excluded = BTreeSet::new();
-    let mut last = match try_pass(kernel, &state, free, probes, pass, context, tally, failed_passes)? {
-        Some(tried) if tried.unstitched() <= state.unstitched() => return Ok(tried),
-        Some(tried) => Some(tried),
-        None => match failed_passes.get(failures) {
-            Some((_, named)) if !named.is_empty() => {
-                excluded.extend(named.iter().copied());
-                None
-            }
-            _ => return Ok(state),
-        },
+    let Some(tried) = try_pass(kernel, &state, free, probes, pass, context, tally, failed_passes)? else {
+        return Ok(state);
     };
-    // Each try that sets patches back, or that the kernel failed naming patches, is made again without their
-    // edges too, while edges are left to grow. A kernel failure of a later try that names no patch is no new
-    // failure of the pass: it stands as its first try left it.
+    if tried.unstitched() <= state.unstitched() {
+        return Ok(tried);
+    }
+    // Each try that sets patches back is made again without their edges too, while edges are left to grow. A
+    // kernel failure of a try after the first is no failure of the pass: its first try stood as a whole.
     let patch_of = |face: usize| state.fused.faces[face].patch;
+    let mut excluded = BTreeSet::new();
+    let mut last = tried;
     let mut growing = free.len();
     for _ in 0..MORE_TRIES {
         *tally = before.clone();
-        if let Some(last) = &last {
-            excluded.extend(set_back(&state, last, patches));
-        }
+        excluded.extend(set_back(&state, &last, patches));
         let (rest, rest_probes): (Vec<(usize, usize)>, Vec<EdgeProbe>) = free
             .iter()
             .zip(probes)
@@ -268,22 +254,14 @@ fn later_pass<K: Kernel>(
             break;
         }
         growing = rest.len();
-        let mut failed = Vec::new();
-        match try_pass(kernel, &state, &rest, &rest_probes, pass, context, tally, &mut failed)? {
-            Some(retried) if retried.unstitched() <= state.unstitched() => {
-                // Made again and standing: the first try's failure is no failure of the pass.
-                failed_passes.truncate(failures);
-                return Ok(retried);
-            }
-            Some(retried) => last = Some(retried),
-            None => match failed.first() {
-                Some((_, named)) if !named.is_empty() => {
-                    excluded.extend(named.iter().copied());
-                    last = None;
-                }
-                _ => break,
-            },
+        let Some(retried) = try_pass(kernel, &state, &rest, &rest_probes, pass, context, tally, &mut Vec::new())?
+        else {
+            break;
+        };
+        if retried.unstitched() <= state.unstitched() {
+            return Ok(retried);
         }
+        last = retried;
     }
     *tally = before;
     Ok(state)
@@ -304,7 +282,7 @@ fn try_pass<K: Kernel>(
     pass: Pass,
     (patches, solids, fuzzy): (&[PatchInfo], &[SolidMesh], f64),
     tally: &mut JointTally,
-    failed_passes: &mut Vec<FailedPass>,
+    failed_passes: &mut Vec<String>,
 ) -> Result<Option<State>, SidecarError> {
     let grown =
         run_pass(kernel, &state.fused, &state.keep, free, probes, patches, solids, fuzzy, pass, tally, failed_passes)?;
@@ -363,7 +341,7 @@ fn run_pass<K: Kernel>(
     fuzzy: f64,
     pass: Pass,
     tally: &mut JointTally,
-    failed_passes: &mut Vec<FailedPass>,
+    failed_passes: &mut Vec<String>,
 ) -> Result<Option<Grown>, SidecarError> {
     let before = tally.clone();
     let mut curved = false;
@@ -376,7 +354,7 @@ fn run_pass<K: Kernel>(
     match outcome {
         Err(e) if e.code().is_some() && pass != Pass::Joints => {
             *tally = before;
-            failed_passes.push((format!("the {} pass: {e}", pass.name()), e.patches().to_vec()));
+            failed_passes.push(format!("the {} pass: {e}", pass.name()));
             Ok(None)
         }
         other => other,

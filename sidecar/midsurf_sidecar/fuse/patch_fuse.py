@@ -16,7 +16,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS
 
 from ..geom.booleans import arguments, check_area_kept, general_fuse, split, within
 from ..geom.topology import IndexedShapeMap, ancestors, diagonal, indexed_map, subshapes
-from ..protocol.errors import AreaLost, KernelError
+from ..protocol.errors import KernelError
 from .fused_graph import describe
 
 
@@ -45,11 +45,7 @@ def fuse(
     owner: list[tuple[TopoDS_Shape, int]] = []
     for members in groups.values():
         part_how = (how[0], {i for i, k in enumerate(members) if k in how[1]})
-        try:
-            part, part_faces, part_patch = _fuse_one([patches[k] for k in members], fuzzy, split_internal, part_how)
-        except KernelError as failed:
-            # The patches it names are the body's: named again as the request's.
-            raise KernelError(str(failed), patches=[members[p] for p in failed.patches]) from failed
+        part, part_faces, part_patch = _fuse_one([patches[k] for k in members], fuzzy, split_internal, part_how)
         owner.extend((part_faces.FindKey(i + 1), members[p]) for i, p in enumerate(part_patch))
         maker.Add(fused, part)
     face_map = indexed_map(fused, TopAbs_FACE)
@@ -121,12 +117,8 @@ def _fuse_faces(
         key = "settled" if patch in settled else (patch if patches_fused else ("face", i))
         groups.setdefault(key, []).append(face)
     builder = general_fuse(arguments(list(groups.values())), fuzzy)
-    # The patches' faces overlap only where fuzzy merges them: their pieces must cover them. The error names the
-    # patches of the faces short of their area, so a stitching pass can be made again without what broke them.
-    try:
-        check_area_kept(builder, faces, fuzzy)
-    except AreaLost as lost:
-        raise KernelError(str(lost), patches=[input_patch[k] for k in lost.faces]) from lost
+    # The patches' faces overlap only where fuzzy merges them: their pieces must cover them.
+    check_area_kept(builder, faces, fuzzy)
     return inputs, input_patch, builder
 
 

@@ -15,7 +15,7 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
 from OCP.TopoDS import TopoDS_Shape
 
 from ..constants import AREA_KEPT_SHARE, CONFUSION, SAME_DOMAIN_ANGLE
-from ..protocol.errors import AreaLost, KernelError, one_line
+from ..protocol.errors import KernelError, one_line
 from .pole_offset import on_pole_offset
 from .topology import boundary_length, compound_of, face_props, indexed_map, subshapes
 
@@ -81,12 +81,11 @@ def arguments(groups: list[list[TopoDS_Shape]]) -> list[TopoDS_Shape]:
 
 
 def check_area_kept(builder: BRepAlgoAPI_BuilderAlgo | BOPAlgo_Builder, faces: list[TopoDS_Shape], fuzzy: float) -> None:
-    """Raises AreaLost, naming every face short of its area, when the images of `faces` (their pieces in
-    `builder`'s result) do not cover their area: OCCT at times returns a split with loops inverted or faces
-    dropped and no error, and patches built on that lose material the later stages cannot see. Each face may
-    differ from its pieces by what merging within the fuzzy value moves (fuzzy x its boundary); beyond that, the
-    faces together by AREA_KEPT_SHARE of their area."""
-    total, excess, worst, losing = 0.0, 0.0, (0.0, -1, 0.0, 0.0), []
+    """Raises KernelError when the images of `faces` (their pieces in `builder`'s result) do not cover their area:
+    OCCT at times returns a split with loops inverted or faces dropped and no error, and patches built on that
+    lose material the later stages cannot see. Each face may differ from its pieces by what merging within the
+    fuzzy value moves (fuzzy x its boundary); beyond that, the faces together by AREA_KEPT_SHARE of their area."""
+    total, excess, worst = 0.0, 0.0, (0.0, -1, 0.0, 0.0)
     for k, face in enumerate(faces):
         area = face_props(face).Mass()
         total += abs(area)
@@ -98,12 +97,10 @@ def check_area_kept(builder: BRepAlgoAPI_BuilderAlgo | BOPAlgo_Builder, faces: l
         if beyond > 0.0:
             excess += beyond
             worst = max(worst, (beyond, k, pieces, area))
-            losing.append(k)
     if excess > AREA_KEPT_SHARE * total:
         _, k, pieces, area = worst
-        raise AreaLost(
-            f"a split of {len(faces)} faces lost {excess:.3f} of {total:.3f} mm2 (face {k}: pieces cover {pieces:.3f} of {area:.3f})",
-            losing,
+        raise KernelError(
+            f"a split of {len(faces)} faces lost {excess:.3f} of {total:.3f} mm2 (face {k}: pieces cover {pieces:.3f} of {area:.3f})"
         )
 
 

@@ -2,16 +2,14 @@
 
 
 class OpError(Exception):
-    """A failure reported to Rust as `{"err": {"code": code, "message": message}}`, with `"patches"` when the op
-    can name the patches (indices into its request's `patches`) whose faces it broke."""
+    """A failure reported to Rust as `{"err": {"code": code, "message": message}}`."""
 
     code = "kernel_error"
 
-    def __init__(self, message: str, code: str | None = None, patches: list[int] | None = None) -> None:
+    def __init__(self, message: str, code: str | None = None) -> None:
         super().__init__(message)
         if code is not None:
             self.code = code
-        self.patches = sorted(set(patches)) if patches else []
 
 
 class BadArgs(OpError):
@@ -24,15 +22,6 @@ class KernelError(OpError):
     """OCCT failed or returned something unusable; the message says which step and on what."""
 
     code = "kernel_error"
-
-
-class AreaLost(KernelError):
-    """A boolean whose pieces do not cover the faces it split; `faces`: the indices (into the faces checked) of
-    those that lost area beyond what merging within the fuzzy value moves."""
-
-    def __init__(self, message: str, faces: list[int]) -> None:
-        super().__init__(message)
-        self.faces = faces
 
 
 def one_line(exc: BaseException) -> str:
