@@ -76,9 +76,9 @@ pub fn element_quality(nodes: &[DVec3], e: &[usize]) -> ElementQuality {
         (warp, skew, area / max_edge.max(1e-300))
     } else {
         let mut smallest = 90.0f64;
-        for v in 0..3 {
+        for (v, &corner) in p.iter().enumerate().take(3) {
             let opposite = mid((v + 1) % 3);
-            let median = opposite - p[v];
+            let median = opposite - corner;
             let midline = mid(v) - mid((v + 2) % 3);
             smallest = smallest.min(line_angle_deg(median, midline));
         }

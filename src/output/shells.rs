@@ -383,13 +383,15 @@ mod tests {
         assert!(warning.is_none());
     }
 
-    /// The shells and merge sets `make_shells` asks of the kernel for `stitched`, each piece given as the
-    /// (patch, centroid x) it is.
-    fn asked_shells(stitched: &Outcome) -> (Vec<Vec<(usize, f64)>>, Vec<Vec<(usize, f64)>>) {
+    /// Sets of pieces, each piece given as the (patch, centroid x) it is.
+    type NamedSets = Vec<Vec<(usize, f64)>>;
+
+    /// The shells and merge sets `make_shells` asks of the kernel for `stitched`.
+    fn asked_shells(stitched: &Outcome) -> (NamedSets, NamedSets) {
         let mut kernel = FakeKernel::new(vec![shells_reply(&stitched.keep)]);
         make_shells(&mut kernel, stitched, 1e-3).unwrap();
         let Some(Request::MakeShells { shells, merge, .. }) = kernel.requests.last() else { panic!("no make_shells") };
-        let named = |sets: &Vec<Vec<usize>>| -> Vec<Vec<(usize, f64)>> {
+        let named = |sets: &Vec<Vec<usize>>| -> NamedSets {
             let face = |p: usize| (stitched.fused.faces[p].patch, stitched.fused.faces[p].centroid.x);
             sets.iter().map(|set| set.iter().map(|&p| face(p)).collect()).collect()
         };

@@ -118,6 +118,9 @@ pub enum PlanNote {
     PartialOverlap { group: usize, faces: Vec<FaceId>, coverage: f64 },
 }
 
+/// Each reference face with the pairs it belongs to.
+type FacePartners<'a> = Vec<(FaceId, Vec<&'a Pair>)>;
+
 /// The larger side is kept as the reference while at least this share of it faces its partners.
 const MIN_COVERAGE: f64 = 0.5;
 
@@ -129,7 +132,7 @@ fn choose_reference<'a>(
     graph: &FaceGraph,
     group: &crate::pairing::PairGroup,
     pairing: &'a Pairing,
-) -> (Side, Vec<(FaceId, Vec<&'a Pair>)>, Option<PlanNote>) {
+) -> (Side, FacePartners<'a>, Option<PlanNote>) {
     let area = |side: usize| group.sides[side].iter().map(|&f| graph.faces[f].area).sum::<f64>();
     let coverage = |side: usize| (group.overlap_area / area(side)).min(1.0);
     let larger = group.reference as usize;

@@ -141,7 +141,8 @@ fn a_face_over_two_levels_gives_a_patch_per_level_each_kept_off_the_other() {
     // one level only: it gives a patch per level, clipped to that level's partner and off the other's.
     let (g, pairing) = two_levels_on_each_side();
     let (plans, _) = plan_patches(&g, &pairing, Position::Mid, &[]);
-    let got: Vec<(Vec<FaceId>, Placement, Vec<Vec<FaceId>>, Vec<Vec<FaceId>>, bool)> = plans
+    type Seen = (Vec<FaceId>, Placement, Vec<Vec<FaceId>>, Vec<Vec<FaceId>>, bool);
+    let got: Vec<Seen> = plans
         .iter()
         .map(|p| (p.faces.clone(), p.placement.clone(), p.partners.clone(), p.exclude.clone(), p.strict))
         .collect();

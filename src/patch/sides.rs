@@ -21,11 +21,14 @@ fn skin(roles: &[FaceRole], face: FaceId) -> Option<(usize, Side)> {
     }
 }
 
+/// Two skins (pair group, side) that run into each other, the lower group first.
+type SkinLink = ((usize, Side), (usize, Side));
+
 /// Skins that run into each other, with the length of the edges between them: directly, or through a
 /// connecting or suppressed face (a fillet between two walls) touching both. Keyed by ((g, X), (k, Y)) with g < k.
-fn links(graph: &FaceGraph, pairing: &Pairing) -> BTreeMap<((usize, Side), (usize, Side)), f64> {
+fn links(graph: &FaceGraph, pairing: &Pairing) -> BTreeMap<SkinLink, f64> {
     let roles = &pairing.roles;
-    let mut out: BTreeMap<((usize, Side), (usize, Side)), f64> = BTreeMap::new();
+    let mut out: BTreeMap<SkinLink, f64> = BTreeMap::new();
     let mut add = |a: (usize, Side), b: (usize, Side), length: f64| {
         if a.0 != b.0 {
             *out.entry(if a.0 < b.0 { (a, b) } else { (b, a) }).or_insert(0.0) += length;
@@ -98,7 +101,7 @@ fn bit(side: Side) -> u8 {
 pub fn top_sides(graph: &FaceGraph, pairing: &Pairing) -> Vec<Side> {
     let n = pairing.groups.len();
     let mut forest = Parity { parent: (0..n).collect(), parity: vec![0; n] };
-    let mut ordered: Vec<(((usize, Side), (usize, Side)), f64)> = links(graph, pairing).into_iter().collect();
+    let mut ordered: Vec<(SkinLink, f64)> = links(graph, pairing).into_iter().collect();
     // Longest first; the key order (group ids) breaks ties, so the result does not depend on the map.
     ordered.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
     for (((g, x), (k, y)), _) in ordered {

@@ -81,8 +81,11 @@ pub struct Stitched {
     pub failed_passes: Vec<String>,
 }
 
-/// Free edges of the kept faces: (edge, its one kept face), in edge order.
-fn free_edges(fused: &Fused, keep: &[bool]) -> Vec<(usize, usize)> {
+/// A free edge of the kept faces: (edge, its one kept face).
+type FreeEdge = (usize, usize);
+
+/// Free edges of the kept faces, in edge order.
+fn free_edges(fused: &Fused, keep: &[bool]) -> Vec<FreeEdge> {
     fused
         .edges
         .iter()
@@ -382,7 +385,7 @@ fn free_and_probed<K: Kernel>(
     keep: &[bool],
     patches: &[PatchInfo],
     meetings: bool,
-) -> Result<(Vec<(usize, usize)>, Vec<EdgeProbe>), SidecarError> {
+) -> Result<(Vec<FreeEdge>, Vec<EdgeProbe>), SidecarError> {
     let free = free_edges(fused, keep);
     let targets = if meetings { kept_faces(keep) } else { Vec::new() };
     let probes = probe(kernel, fused, &free, targets, patches)?;
