@@ -330,8 +330,11 @@ fn broken_faces(fused: &Fused, keep: &[bool]) -> Vec<(usize, f64)> {
 /// the same pass growing straight edges only: a curved edge's strip is a ruled face (but along a cylinder's
 /// axis or a cone's ruling), which the fuse gives up on more often, and a failed pass loses every joint in it.
 /// A pass after the first only improves on what the first made: when the kernel fails that too, the stitching
-/// and its joint tally stand as they were, and the failure is added to `failed_passes`. A kernel that stops
-/// answering is an error.
+/// and its joint tally stand as they were, and the failure is added to `failed_passes`. When it fails the first
+/// pass both ways, that pass is made growing nothing (the trimmed patches fused again), the failure added to
+/// `failed_passes`: the later passes, each standing only where it leaves no more open than it found, then make
+/// what joints they can (the rims, and the partners with their T- and L-joints), where before one strip the
+/// kernel gave up on left the whole part unstitched. A kernel that stops answering is an error.
 #[allow(clippy::too_many_arguments)]
 fn run_pass<K: Kernel>(
     kernel: &mut K,
@@ -357,8 +360,19 @@ fn run_pass<K: Kernel>(
     match outcome {
         Err(e) if e.code().is_some() && pass != Pass::Joints => {
             *tally = before;
-            failed_passes.push(format!("the {} pass: {e}", pass.name()));
+            failed_passes.push(format!(
+                "the {} pass: {e}; its joints are not made and the edges it grows stay as the earlier passes \
+                 left them",
+                pass.name()
+            ));
             Ok(None)
+        }
+        Err(e) if e.code().is_some() && !free.is_empty() => {
+            *tally = before;
+            failed_passes.push(format!(
+                "the joints pass: {e}; it is made growing nothing, and the later passes make what joints they can"
+            ));
+            grow(kernel, fused, keep, &[], &[], patches, solids, fuzzy, pass, None, tally)
         }
         other => other,
     }
@@ -409,8 +423,8 @@ pub struct Outcome {
     pub warnings: Vec<Warning>,
 }
 
-/// The stitch stage on the trimmed patches. A kernel op that fails leaves the patches unstitched, with a
-/// warning; a kernel that stops answering is an error.
+/// The stitch stage on the trimmed patches. A kernel op that fails outside the passes' fuses (which fall back,
+/// `run_pass`) leaves the patches unstitched, with a warning; a kernel that stops answering is an error.
 pub fn stitch_part<K: Kernel>(
     kernel: &mut K,
     trimmed: Trimmed,
@@ -425,10 +439,7 @@ pub fn stitch_part<K: Kernel>(
             branches.extend(s.branches);
             warnings.extend(s.failed_passes.iter().map(|failure| Warning {
                 code: "stitch_pass_failed",
-                message: format!(
-                    "the kernel failed {failure}; its joints are not made and the edges it grows stay as the \
-                     earlier passes left them"
-                ),
+                message: format!("the kernel failed {failure}"),
                 solid: None,
                 faces: Vec::new(),
             }));

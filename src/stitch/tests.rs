@@ -286,22 +286,40 @@ fn a_pass_the_kernel_fails_with_a_curved_rim_strip_is_made_again_with_straight_e
 }
 
 #[test]
-fn a_failed_pass_growing_no_curved_edge_is_not_made_again() {
-    // The plate of the test above with its straight edge only: the joints pass fails as it is (the same pass
-    // made again would fail the same way), and the joints pass's failure is the stitching's.
+fn a_joints_pass_the_kernel_fails_is_made_growing_nothing_and_the_later_passes_go_on() {
+    // The plate of the test above with its straight edge only: the joints pass's fuse fails. Growing no curved
+    // edge, it is not made again with straight edges only (that would fail the same way) but growing nothing: the
+    // trimmed patches fused again. The rims pass then grows the edge to the rim, and the joints pass's failure is
+    // said; the part is not written unstitched.
     let (a, b) = (DVec3::new(49.3, 0.0, 1.0), DVec3::new(49.3, 10.0, 1.0));
     let fused = fused(vec![face(0, DVec3::Z)], vec![edge(a, b, &[0])]);
+    let edge_probe = json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[])]});
+    let made = json!([{"area": 7.0, "error": null}]);
     let replies = vec![
-        json!({"edges": [probe(a, b, DVec3::Z, DVec3::X, &[])]}),
-        json!({"handle": 20, "strips": [{"area": 7.0, "error": null}], "corners": []}),
+        edge_probe.clone(),
+        json!({"handle": 20, "strips": made, "corners": []}),
         json!({"handle": 30, "faces": 1}),
         json!({"error": {"code": "kernel_failed", "message": "the fuse gave up"}}),
+        json!({"handle": 31, "faces": 1}),
+        json!({"handle": 40, "faces": [face(0, DVec3::Z)], "edges": [edge(a, b, &[0])]}),
+        edge_probe,
+        json!({"handle": 21, "strips": made, "corners": []}),
+        json!({"handle": 32, "faces": 1}),
+        json!({"handle": 41, "faces": [face(0, DVec3::Z)], "edges": []}),
     ];
-    let mesh = SolidMesh::new(&synthetic::cuboid(DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0))).unwrap();
-    let mut kernel = FakeKernel::new(replies);
-    let result = stitch(&mut kernel, &fused, &[true], &[info(2.0, (1, 0))], &[mesh], 1e-4);
-    assert_eq!(result.err().and_then(|e| e.code().map(str::to_string)), Some("kernel_failed".to_string()));
-    assert_eq!(kernel.ops(), ["probe_edges", "extend_edges", "gather", "fuse"]);
+    let (stitched, kernel) = run(&fused, &[info(2.0, (1, 0))], (DVec3::ZERO, DVec3::new(50.0, 10.0, 2.0)), replies);
+
+    let ops = ["probe_edges", "extend_edges", "gather", "fuse", "gather", "fuse"];
+    assert_eq!(kernel.ops(), [&ops[..], &["probe_edges", "extend_edges", "gather", "fuse"]].concat());
+    assert!(matches!(kernel.requests[4], Request::Gather { unify: None, .. }), "nothing grown, nothing merged");
+    assert_eq!(stitched.fused.handle, 41, "the rims pass's result stands");
+    assert_eq!(
+        stitched.failed_passes,
+        ["the joints pass: the fuse gave up; it is made growing nothing, and the later passes make what joints they \
+          can"]
+    );
+    assert_eq!(stitched.joints, [report(vec![1], "rim", 1, 10.0)], "the joints pass's strip is not counted");
+    assert_eq!(stitched.free.open_edges, 0);
 }
 
 /// The replies for a plate whose straight edge a-b (probed as `edge_probe`) the joints pass grows but leaves
@@ -347,7 +365,11 @@ fn a_later_pass_the_kernel_fails_leaves_the_earlier_stitching_and_says_so() {
         ]
     );
     assert_eq!(stitched.fused.handle, 40, "the joints pass's result stands");
-    assert_eq!(stitched.failed_passes, ["the rims pass: the fuse gave up"]);
+    assert_eq!(
+        stitched.failed_passes,
+        ["the rims pass: the fuse gave up; its joints are not made and the edges it grows stay as the earlier passes \
+          left them"]
+    );
     assert_eq!(stitched.joints, [report(vec![1], "rim", 1, 10.0)], "the rims pass's strip is not counted");
     assert_eq!(stitched.free.open_edges, 1);
 }
