@@ -1059,6 +1059,56 @@ def vault_off_centre() -> Fixture:
     part = single_solid((skin(20, 0) - skin(18, -0.1)) & box(0, 0, 0, 40, 60, 30))
     return Fixture(part, part.volume, 6)
 
+def rounded_box(dx: float, dy: float, dz: float, radius: float, origin: tuple[float, float, float]) -> Solid:
+    """A box from `origin`, its four vertical edges rounded by `radius`."""
+    part = box(*origin, dx, dy, dz)
+    return part.fillet(radius, part.edges().filter_by(Axis.Z))
+
+
+def tray_off_centre_corners() -> Fixture:
+    """An open tray 80 x 60 x 30, walls and floor 1.5, its vertical corners rounded R 5 outside and R 3.6 inside:
+    the inner arcs, tangent to the inner walls, sit on axes 0.1 (each way) off the outer ones, as when the two
+    radii are chosen apart (not R - t). The class: a bend or rounded corner whose skins are arcs on parallel
+    axes apart, between flats of the same thickness; the corner is 1.5 at its tangent lines and thicker between
+    (paired by rays, mean 1.52). Mid-surface: the walls' planes 0.75 in, joined round each corner by the
+    cylinder on the mean axis with the mean radius 4.3, which meets both planes tangentially.
+    Faces: 19 (5 outside and 4 inside walls, 4 outer and 4 inner corners, floor, rim).
+    Volume: the built solid's.
+    """
+    part = rounded_box(80, 60, 30, 5.0, (0, 0, 0)) - rounded_box(77, 57, 30, 3.6, (1.5, 1.5, 1.5))
+    part = single_solid(part)
+    return Fixture(part, part.volume, 19)
+
+
+def bend_off_centre() -> Fixture:
+    """A sheet bent 90 degrees between legs of two thicknesses, 40 wide (y): a horizontal leg 1.5 thick (z 0..1.5,
+    x 0..50), a vertical leg 1.56 thick (x 53.44..55, z 5..55), the bend's outer arc R 5 about (50, 5) and its
+    inner arc R 3.47 about (49.97, 4.97), each tangent to its legs' skins. The class: a bend whose arcs are
+    drawn on axes apart, between flats of two thicknesses, so that no one offset of a skin meets both flats.
+    Mid-surface: the mean cylinder R 4.235 about (49.985, 4.985) meets both legs' mid-planes (z = 0.75 and
+    x = 54.22) tangentially: one piece, no joint.
+    Faces: 10 (4 planes and 2 arcs of the skins, 2 leg ends, 2 sides).
+    Volume: the built solid's.
+    """
+    inner_x, centre = 55 - 1.56, (55 - 1.56 - 3.47, 1.5 + 3.47)
+    outer_axis = Plane(origin=(50, 0, 5), x_dir=(1, 0, 0), z_dir=(0, -1, 0))
+    inner_axis = Plane(origin=(centre[0], 0, centre[1]), x_dir=(1, 0, 0), z_dir=(0, -1, 0))
+    profile = Wire(
+        [
+            Edge.make_line((0, 0, 0), (50, 0, 0)),
+            Edge.make_circle(5, outer_axis, start_angle=-90, end_angle=0),
+            Edge.make_line((55, 0, 5), (55, 0, 55)),
+            Edge.make_line((55, 0, 55), (inner_x, 0, 55)),
+            Edge.make_line((inner_x, 0, 55), (inner_x, 0, centre[1])),
+            Edge.make_circle(3.47, inner_axis, start_angle=-90, end_angle=0),
+            Edge.make_line((centre[0], 0, 1.5), (0, 0, 1.5)),
+            Edge.make_line((0, 0, 1.5), (0, 0, 0)),
+        ]
+    )
+    part = prism_xz(profile, 40)
+    return Fixture(part, part.volume, 10)
+
+
 PARTS: list[Callable[[], Fixture]] = [
     flat_plate,
     l_bracket,
@@ -1119,6 +1169,8 @@ PARTS: list[Callable[[], Fixture]] = [
     rib_side_boss,
     vault_off_centre,
     rib_facing_open_ring,
+    tray_off_centre_corners,
+    bend_off_centre,
 ]
 
 

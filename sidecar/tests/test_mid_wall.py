@@ -1,6 +1,8 @@
 """A tapered wall's face moved to mid-wall point by point: each point half-way to the partner along its normal,
 the face's own boundary kept; faces whose B-spline form has other parameters are offset at the mean."""
 
+import math
+
 import pytest
 from OCP.BRep import BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Surface
@@ -11,7 +13,7 @@ from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder, BRepPrimAPI_MakePrism
 from OCP.GProp import GProp_GProps
 from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Cylinder
-from OCP.TopAbs import TopAbs_FACE
+from OCP.TopAbs import TopAbs_FACE, TopAbs_VERTEX
 from OCP.TopoDS import TopoDS
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Vec
 
@@ -75,6 +77,27 @@ def test_a_cylinder_is_offset_at_the_mean():
     partner = next(f for f in map(TopoDS.Face, subshapes(inner, TopAbs_FACE)) if kind(f) == GeomAbs_Cylinder)
     moved = mid_wall_face(side, [partner], -1.0)
     assert BRepAdaptor_Surface(moved, True).Cylinder().Radius() == pytest.approx(9.0)
+
+
+def quarter(centre, radius):
+    """The curved face of a quarter cylinder 5 high on a vertical axis through `centre`, from angle 0 to 90."""
+    solid = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(*centre, 0), gp_Dir(0, 0, 1)), radius, 5.0, math.pi / 2).Shape()
+    return next(f for f in map(TopoDS.Face, subshapes(solid, TopAbs_FACE)) if kind(f) == GeomAbs_Cylinder)
+
+
+def test_a_bend_drawn_on_centres_apart_goes_onto_the_mean_cylinder():
+    # A bend's outer arc R 5 about (0, 0) and inner arc R 3.6 about (0.1, 0.1): the flats beside it are 1.5 thick
+    # at angle 0 (x from 3.7 to 5) and at 90 degrees alike, the bend thicker in between. The mean cylinder, R 4.3
+    # about (0.05, 0.05), meets each flat's mid-plane (x = 4.35 at angle 0, y = 4.35 at 90) tangentially, at the
+    # angles the outer face spans; an offset of the outer arc at the mean thickness would stand off both.
+    moved = mid_wall_face(quarter((0, 0), 5.0), [quarter((0.1, 0.1), 3.6)], -0.76)
+    assert BRepCheck_Analyzer(moved).IsValid()
+    cylinder = BRepAdaptor_Surface(moved, True).Cylinder()
+    assert cylinder.Radius() == pytest.approx(4.3)
+    assert (cylinder.Location().X(), cylinder.Location().Y()) == pytest.approx((0.05, 0.05))
+    ends = [BRep_Tool.Pnt_s(TopoDS.Vertex(v)) for v in subshapes(moved, TopAbs_VERTEX)]
+    ends = [p for p in ends if abs(p.Z()) < 1e-9]
+    assert sorted({(round(p.X(), 9), round(p.Y(), 9)) for p in ends}) == [(0.05, 4.35), (4.35, 0.05)]
 
 
 def test_the_moved_plane_runs_on_past_the_face_at_mid_wall():

@@ -191,7 +191,8 @@ pub fn plan_patches(
             let t = combined(&share.pairs);
             let partners = partners_of(share.face, &share.pairs);
             let kind = offset_kind(group.kind, &share.pairs);
-            let mid_wall = follows_mid_wall(kind, t, position);
+            let mid_wall = follows_mid_wall(kind, t, position)
+                || (kind == PairKind::Freeform && position == Position::Mid && skins_apart(graph, &share));
             let same = |p: &&mut PatchPlan| {
                 (p.thickness.mean - t.mean).abs() <= SAME_THICKNESS * p.thickness.mean
                     && p.strict == share.minor
@@ -231,6 +232,45 @@ pub fn plan_patches(
     }
     (plans, notes)
 }
+
+/// Parallel axes within this angle (radians) make two cylinders one bend's skins drawn on centres apart (the
+/// sidecar checks the same, `PARALLEL_AXES` in its constants).
+const PARALLEL_AXES: f64 = 1e-6;
+
+/// Whether a share's face is a cylinder whose partners are all cylinders on one axis parallel to its own, apart
+/// from it (a bend or a rounded corner whose inner and outer arcs a CAD drew on centres a little apart, paired
+/// by rays), or a sphere whose partners are all spheres on one centre apart from its own (the dome capping such
+/// a vault). Its wall's mid-surface is then the cylinder (sphere) on the mean axis (centre) with the mean radius:
+/// at each tangent line with a flat beside a bend, it runs into that flat's mid-plane, whatever the flat's
+/// thickness (each skin's tangent point lies on the same normal), where an offset of one skin at the mean
+/// thickness stands a hair off both flats, and the stitching's rays along the common tangent pass the other
+/// patch by; a vault and its dome meet along their common circle as their skins do.
+fn skins_apart(graph: &FaceGraph, share: &Share) -> bool {
+    let centre = |face: FaceId| match graph.faces[face].surface {
+        Surface::Cylinder { origin, axis, .. } => Some((origin, Some(axis))),
+        Surface::Sphere { center, .. } => Some((center, None)),
+        _ => None,
+    };
+    let Some((origin, axis)) = centre(share.face) else { return false };
+    // The offset of a partner's axis or centre from the face's own, across the axis.
+    let apart = |face: FaceId| {
+        let (o, a) = centre(face)?;
+        let across = |v: DVec3| axis.map_or(v, |axis| v.reject_from_normalized(axis));
+        match (axis, a) {
+            (Some(axis), Some(a)) if a.cross(axis).length() <= PARALLEL_AXES => Some(across(o - origin)),
+            (None, None) => Some(o - origin),
+            _ => None,
+        }
+    };
+    let Some(offsets) = share.pairs.iter().map(|p| apart(p.other(share.face))).collect::<Option<Vec<DVec3>>>() else {
+        return false;
+    };
+    let Some(&first) = offsets.first() else { return false };
+    first.length() > 0.0 && offsets.iter().all(|o| o.distance(first) <= SAME_AXIS * (1.0 + first.length()))
+}
+
+/// Two partners' axes (centres) closer than this share of their offset are one (skins drawn on one sketch).
+const SAME_AXIS: f64 = 1e-9;
 
 /// Whether a patch follows the local mid-points of its wall rather than an offset at the mean thickness: at
 /// mid-wall, for a freeform wall that tapers past `TAPER_SPREAD` (a blade, a cast web). Planar tapers go onto a

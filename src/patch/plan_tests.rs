@@ -2,6 +2,7 @@ use super::*;
 use crate::model::tolerance::Tolerances;
 use crate::pairing::detect;
 use crate::synthetic;
+use std::f64::consts::FRAC_PI_2;
 
 #[test]
 fn bisector_of_a_drafted_wall() {
@@ -224,4 +225,31 @@ fn a_freeform_face_in_a_draft_group_is_offset_not_projected() {
     assert!(matches!(of(0).placement, Placement::Plane { .. }), "{:?}", of(0).placement);
     assert!(matches!(of(1).placement, Placement::Offset(_)), "{:?}", of(1).placement);
     assert_eq!(of(1).kind, PairKind::Freeform);
+}
+
+#[test]
+fn a_bend_drawn_on_centres_apart_follows_its_mid_wall_and_a_coaxial_one_does_not() {
+    // Quarter cylinders on vertical axes: the outer arc R 5 about the origin (face 0), an inner arc R 3.6 about
+    // (0.1, 0.1) (face 1), a coaxial inner arc R 3.5 (face 2) and a flat (face 3).
+    let faces = vec![
+        synthetic::cylinder(DVec3::ZERO, 5.0, (0.0, FRAC_PI_2), 5.0, true),
+        synthetic::cylinder(DVec3::new(0.1, 0.1, 0.0), 3.6, (0.0, FRAC_PI_2), 5.0, false),
+        synthetic::cylinder(DVec3::ZERO, 3.5, (0.0, FRAC_PI_2), 5.0, false),
+        synthetic::rect(DVec3::new(3.5, 0.0, 0.0), DVec3::Y, DVec3::Z, -DVec3::X),
+    ];
+    let g = synthetic::graph(faces, &[]);
+    let pair = |other: usize| Pair {
+        faces: [0, other],
+        kind: PairKind::Freeform,
+        thickness: Thickness { mean: 1.5, min: 1.4, max: 1.6 },
+        overlap_area: 10.0,
+    };
+    let (apart, coaxial, flat) = (pair(1), pair(2), pair(3));
+    fn share<'a>(pairs: &[&'a Pair]) -> Share<'a> {
+        Share { face: 0, pairs: pairs.to_vec(), exclude: Vec::new(), minor: false }
+    }
+    assert!(skins_apart(&g, &share(&[&apart])));
+    assert!(!skins_apart(&g, &share(&[&coaxial])), "an offset already lies mid-way");
+    assert!(!skins_apart(&g, &share(&[&flat])));
+    assert!(!skins_apart(&g, &share(&[&apart, &coaxial])), "two partner axes: no one mean cylinder");
 }

@@ -17,8 +17,8 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace,
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepLib import BRepLib
 from OCP.BRepTools import BRepTools, BRepTools_WireExplorer
-from OCP.Geom import Geom_BSplineSurface, Geom_Line, Geom_RectangularTrimmedSurface
-from OCP.GeomAbs import GeomAbs_BezierSurface, GeomAbs_BSplineSurface, GeomAbs_Plane
+from OCP.Geom import Geom_BSplineSurface, Geom_CylindricalSurface, Geom_Line, Geom_RectangularTrimmedSurface, Geom_SphericalSurface
+from OCP.GeomAbs import GeomAbs_BezierSurface, GeomAbs_BSplineSurface, GeomAbs_Cylinder, GeomAbs_Plane, GeomAbs_Sphere
 from OCP.GeomAPI import GeomAPI_IntCS
 from OCP.GeomConvert import GeomConvert
 from OCP.GeomLProp import GeomLProp_SLProps
@@ -40,6 +40,7 @@ from ..constants import (
     MID_WALL_ROOM,
     MID_WALL_SPANS,
     NORMAL_RESOLUTION,
+    PARALLEL_AXES,
 )
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import area_samples
@@ -51,9 +52,79 @@ MOVABLE_KINDS = (GeomAbs_BSplineSurface, GeomAbs_BezierSurface, GeomAbs_Plane)
 
 def mid_wall_face(face: TopoDS_Face, partners: list[TopoDS_Face], mean_offset: float) -> TopoDS_Face:
     """`face` moved into the material to half-way to `partners` at every point (`mean_offset` < 0: the offset at
-    the mean thickness, used where that cannot be done)."""
-    moved = _moved(face, partners, mean_offset)
+    the mean thickness, used where that cannot be done). A cylinder whose partners are cylinders on one axis
+    parallel to its own goes onto the mean cylinder (`_mean_cylinder`), a sphere whose partners are spheres on one
+    centre onto the mean sphere (`_mean_sphere`)."""
+    kind = BRepAdaptor_Surface(face, False).GetType()
+    if kind == GeomAbs_Cylinder:
+        moved = _mean_cylinder(face, partners)
+    elif kind == GeomAbs_Sphere:
+        moved = _mean_sphere(face, partners)
+    else:
+        moved = _moved(face, partners, mean_offset)
     return moved if moved is not None else offset_face(face, mean_offset)
+
+
+def _mean_sphere(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Face | None:
+    """`face` on the sphere on the mean of its centre and its partners' (one centre) with the mean radius, in the
+    same parameters (the axis system moved, not turned): the dome of a vault whose skins were drawn on centres
+    apart, meeting the vault's mean cylinder (`_mean_cylinder`) along their common circle as its skins meet.
+    None when the partners are not such spheres."""
+    own = BRepAdaptor_Surface(face, True)
+    if not partners or own.GetType() != GeomAbs_Sphere:
+        return None
+    sphere = own.Sphere()
+    others = []
+    for partner in partners:
+        surface = BRepAdaptor_Surface(partner, True)
+        if surface.GetType() != GeomAbs_Sphere:
+            return None
+        others.append(surface.Sphere())
+    offsets = [gp_Vec(sphere.Location(), o.Location()) for o in others]
+    if any(v.Subtracted(offsets[0]).Magnitude() > CONFUSION for v in offsets[1:]):
+        return None
+    radius = 0.5 * (sphere.Radius() + others[0].Radius())
+    position = sphere.Position().Translated(offsets[0] * 0.5)
+    try:
+        rebuilt = _face_on(Geom_SphericalSurface(position, radius), face)
+    except Exception:
+        return None
+    return rebuilt if rebuilt is not None and BRepCheck_Analyzer(rebuilt).IsValid() else None
+
+
+def _mean_cylinder(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Face | None:
+    """`face` on the cylinder on the mean of its axis and its partners' (one axis, parallel to its own) with the
+    mean radius, in the same parameters (the axis system moved across, not turned): the mid-surface of a bend
+    whose two arcs were drawn on centres apart. Each skin's tangent line with a flat beside the bend lies on the
+    flat's normal at the same angle, so the mean cylinder runs into the flat's mid-plane there, tangent to it,
+    whatever the flat's thickness. None when the partners are not such cylinders."""
+    own = BRepAdaptor_Surface(face, True)
+    if not partners or own.GetType() != GeomAbs_Cylinder:
+        return None
+    cylinder = own.Cylinder()
+    axis = cylinder.Axis()
+    others = []
+    for partner in partners:
+        surface = BRepAdaptor_Surface(partner, True)
+        if surface.GetType() != GeomAbs_Cylinder:
+            return None
+        other = surface.Cylinder()
+        if not other.Axis().IsParallel(axis, PARALLEL_AXES):
+            return None
+        others.append(other)
+    location = cylinder.Location()
+    offsets = [gp_Vec(location, o.Location()) for o in others]
+    direction = gp_Vec(axis.Direction())
+    across = [v - direction * v.Dot(direction) for v in offsets]
+    if any(a.Subtracted(across[0]).Magnitude() > CONFUSION for a in across[1:]):
+        return None
+    radius = 0.5 * (cylinder.Radius() + others[0].Radius())
+    position = cylinder.Position().Translated(across[0] * 0.5)
+    try:
+        rebuilt = _face_on(Geom_CylindricalSurface(position, radius), face)
+    except Exception:
+        return None
+    return rebuilt if rebuilt is not None and BRepCheck_Analyzer(rebuilt).IsValid() else None
 
 
 def _moved(face: TopoDS_Face, partners: list[TopoDS_Face], mean_offset: float) -> TopoDS_Face | None:
