@@ -17,7 +17,9 @@ from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace,
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepLib import BRepLib
 from OCP.BRepTools import BRepTools, BRepTools_WireExplorer
-from OCP.Geom import Geom_BSplineSurface, Geom_CylindricalSurface, Geom_Line, Geom_RectangularTrimmedSurface, Geom_SphericalSurface
+from OCP.Geom import (
+    Geom_BSplineSurface, Geom_CylindricalSurface, Geom_Line, Geom_RectangularTrimmedSurface, Geom_SphericalSurface,
+)
 from OCP.GeomAbs import GeomAbs_BezierSurface, GeomAbs_BSplineSurface, GeomAbs_Cylinder, GeomAbs_Plane, GeomAbs_Sphere
 from OCP.GeomAPI import GeomAPI_IntCS
 from OCP.GeomConvert import GeomConvert
@@ -84,12 +86,7 @@ def _mean_sphere(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Face 
     if any(v.Subtracted(offsets[0]).Magnitude() > CONFUSION for v in offsets[1:]):
         return None
     radius = 0.5 * (sphere.Radius() + others[0].Radius())
-    position = sphere.Position().Translated(offsets[0] * 0.5)
-    try:
-        rebuilt = _face_on(Geom_SphericalSurface(position, radius), face)
-    except Exception:
-        return None
-    return rebuilt if rebuilt is not None and BRepCheck_Analyzer(rebuilt).IsValid() else None
+    return _sound_on(Geom_SphericalSurface(sphere.Position().Translated(offsets[0] * 0.5), radius), face)
 
 
 def _mean_cylinder(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Face | None:
@@ -119,9 +116,13 @@ def _mean_cylinder(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Fac
     if any(a.Subtracted(across[0]).Magnitude() > CONFUSION for a in across[1:]):
         return None
     radius = 0.5 * (cylinder.Radius() + others[0].Radius())
-    position = cylinder.Position().Translated(across[0] * 0.5)
+    return _sound_on(Geom_CylindricalSurface(cylinder.Position().Translated(across[0] * 0.5), radius), face)
+
+
+def _sound_on(surface, face: TopoDS_Face) -> TopoDS_Face | None:
+    """`face` rebuilt on `surface` (`_face_on`), None when that fails or the face fails the kernel's check."""
     try:
-        rebuilt = _face_on(Geom_CylindricalSurface(position, radius), face)
+        rebuilt = _face_on(surface, face)
     except Exception:
         return None
     return rebuilt if rebuilt is not None and BRepCheck_Analyzer(rebuilt).IsValid() else None
@@ -156,11 +157,7 @@ def _moved(face: TopoDS_Face, partners: list[TopoDS_Face], mean_offset: float) -
             break
     else:
         return None
-    try:
-        rebuilt = _face_on(spline, face)
-    except Exception:
-        return None
-    return rebuilt if rebuilt is not None and BRepCheck_Analyzer(rebuilt).IsValid() else None
+    return _sound_on(spline, face)
 
 
 class _Rays:
