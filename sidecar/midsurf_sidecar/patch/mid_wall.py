@@ -72,16 +72,10 @@ def _mean_sphere(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Face 
     same parameters (the axis system moved, not turned): the dome of a vault whose skins were drawn on centres
     apart, meeting the vault's mean cylinder (`_mean_cylinder`) along their common circle as its skins meet.
     None when the partners are not such spheres."""
-    own = BRepAdaptor_Surface(face, True)
-    if not partners or own.GetType() != GeomAbs_Sphere:
+    surfaces = _all_of_kind([face, *partners], GeomAbs_Sphere)
+    if surfaces is None or not partners:
         return None
-    sphere = own.Sphere()
-    others = []
-    for partner in partners:
-        surface = BRepAdaptor_Surface(partner, True)
-        if surface.GetType() != GeomAbs_Sphere:
-            return None
-        others.append(surface.Sphere())
+    sphere, others = surfaces[0].Sphere(), [s.Sphere() for s in surfaces[1:]]
     offsets = [gp_Vec(sphere.Location(), o.Location()) for o in others]
     if any(v.Subtracted(offsets[0]).Magnitude() > CONFUSION for v in offsets[1:]):
         return None
@@ -95,20 +89,13 @@ def _mean_cylinder(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Fac
     whose two arcs were drawn on centres apart. Each skin's tangent line with a flat beside the bend lies on the
     flat's normal at the same angle, so the mean cylinder runs into the flat's mid-plane there, tangent to it,
     whatever the flat's thickness. None when the partners are not such cylinders."""
-    own = BRepAdaptor_Surface(face, True)
-    if not partners or own.GetType() != GeomAbs_Cylinder:
+    surfaces = _all_of_kind([face, *partners], GeomAbs_Cylinder)
+    if surfaces is None or not partners:
         return None
-    cylinder = own.Cylinder()
+    cylinder, others = surfaces[0].Cylinder(), [s.Cylinder() for s in surfaces[1:]]
     axis = cylinder.Axis()
-    others = []
-    for partner in partners:
-        surface = BRepAdaptor_Surface(partner, True)
-        if surface.GetType() != GeomAbs_Cylinder:
-            return None
-        other = surface.Cylinder()
-        if not other.Axis().IsParallel(axis, PARALLEL_AXES):
-            return None
-        others.append(other)
+    if not all(other.Axis().IsParallel(axis, PARALLEL_AXES) for other in others):
+        return None
     location = cylinder.Location()
     offsets = [gp_Vec(location, o.Location()) for o in others]
     direction = gp_Vec(axis.Direction())
@@ -117,6 +104,12 @@ def _mean_cylinder(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Fac
         return None
     radius = 0.5 * (cylinder.Radius() + others[0].Radius())
     return _sound_on(Geom_CylindricalSurface(cylinder.Position().Translated(across[0] * 0.5), radius), face)
+
+
+def _all_of_kind(faces: list[TopoDS_Face], kind) -> list[BRepAdaptor_Surface] | None:
+    """The faces' surfaces (placed), None unless every one is of `kind`."""
+    surfaces = [BRepAdaptor_Surface(f, True) for f in faces]
+    return surfaces if all(s.GetType() == kind for s in surfaces) else None
 
 
 def _sound_on(surface, face: TopoDS_Face) -> TopoDS_Face | None:
