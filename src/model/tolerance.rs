@@ -66,6 +66,15 @@ pub const FREEFORM_SPREAD: f64 = 0.15;
 /// joints than an offset of the face).
 pub const TAPER_SPREAD: f64 = 0.3;
 
+/// Two cylinder axes within this angle (radians) are parallel, as two skins of one bend drawn on axes apart
+/// (`patch::plan`, mean cylinder): exported CAD is exact to ~1e-9; the sidecar checks the same
+/// (`PARALLEL_AXES` in its constants).
+pub const PARALLEL_AXES: f64 = 1e-6;
+
+/// Two partners' axes (or centres) closer than this share of their offset from the face's own are one: skins
+/// drawn on one sketch.
+pub const SAME_AXIS: f64 = 1e-9;
+
 /// Two thicknesses closer than this share are one (the reference faces of a wall offset together, pairs that run
 /// on into each other grouped as one wall): gauges of one sheet differ by more.
 pub const SAME_THICKNESS: f64 = 0.01;

@@ -11,7 +11,7 @@ use serde::Serialize;
 use crate::model::face_graph::{EdgeId, FaceGraph, FaceId, Surface};
 use crate::model::params::Position;
 use crate::model::shapes::Placement;
-use crate::model::tolerance::{SAME_THICKNESS, TAPER_SPREAD};
+use crate::model::tolerance::{PARALLEL_AXES, SAME_AXIS, SAME_THICKNESS, TAPER_SPREAD};
 use crate::pairing::{Pair, PairKind, Pairing, Side, Thickness};
 use crate::patch::sides::top_sides;
 
@@ -233,10 +233,6 @@ pub fn plan_patches(
     (plans, notes)
 }
 
-/// Parallel axes within this angle (radians) make two cylinders one bend's skins drawn on centres apart (the
-/// sidecar checks the same, `PARALLEL_AXES` in its constants).
-const PARALLEL_AXES: f64 = 1e-6;
-
 /// Whether a share's face is a cylinder whose partners are all cylinders on one axis parallel to its own, apart
 /// from it (a bend or a rounded corner whose inner and outer arcs a CAD drew on centres a little apart, paired
 /// by rays), or a sphere whose partners are all spheres on one centre apart from its own (the dome capping such
@@ -268,9 +264,6 @@ fn skins_apart(graph: &FaceGraph, share: &Share) -> bool {
     let Some(&first) = offsets.first() else { return false };
     first.length() > 0.0 && offsets.iter().all(|o| o.distance(first) <= SAME_AXIS * (1.0 + first.length()))
 }
-
-/// Two partners' axes (centres) closer than this share of their offset are one (skins drawn on one sketch).
-const SAME_AXIS: f64 = 1e-9;
 
 /// Whether a patch follows the local mid-points of its wall rather than an offset at the mean thickness: at
 /// mid-wall, for a freeform wall that tapers past `TAPER_SPREAD` (a blade, a cast web). Planar tapers go onto a

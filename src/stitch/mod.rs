@@ -100,7 +100,7 @@ fn free_edges(fused: &Fused, keep: &[bool]) -> Vec<FreeEdge> {
 fn probe<K: Kernel>(
     kernel: &mut K,
     fused: &Fused,
-    free: &[(usize, usize)],
+    free: &[FreeEdge],
     targets: Vec<usize>,
     patches: &[PatchInfo],
 ) -> Result<Vec<EdgeProbe>, SidecarError> {
@@ -178,7 +178,7 @@ struct State {
     fused: Fused,
     keep: Vec<bool>,
     branches: Vec<Branch>,
-    free: Vec<(usize, usize)>,
+    free: Vec<FreeEdge>,
     probes: Vec<EdgeProbe>,
     counted: FreeEdges,
     open_by_patch: Vec<f64>,
@@ -242,7 +242,7 @@ fn later_pass<K: Kernel>(
     for _ in 0..MORE_TRIES {
         *tally = before.clone();
         excluded.extend(set_back(&state, &last, patches));
-        let (rest, rest_probes): (Vec<(usize, usize)>, Vec<EdgeProbe>) = free
+        let (rest, rest_probes): (Vec<FreeEdge>, Vec<EdgeProbe>) = free
             .iter()
             .zip(probes)
             .filter(|(&(_, face), p)| {
@@ -280,7 +280,7 @@ const MORE_TRIES: usize = 2;
 fn try_pass<K: Kernel>(
     kernel: &mut K,
     state: &State,
-    free: &[(usize, usize)],
+    free: &[FreeEdge],
     probes: &[EdgeProbe],
     pass: Pass,
     (patches, solids, fuzzy): (&[PatchInfo], &[SolidMesh], f64),
@@ -340,7 +340,7 @@ fn run_pass<K: Kernel>(
     kernel: &mut K,
     fused: &Fused,
     keep: &[bool],
-    free: &[(usize, usize)],
+    free: &[FreeEdge],
     probes: &[EdgeProbe],
     patches: &[PatchInfo],
     solids: &[SolidMesh],
