@@ -1080,6 +1080,22 @@ def tray_off_centre_corners() -> Fixture:
     return Fixture(part, part.volume, 19)
 
 
+def tray_thin_corners() -> Fixture:
+    """An open tray 80 x 60 x 30, walls and floor 1.5, its vertical corners rounded R 5 outside and R 3.4 inside:
+    the inner arcs sit on axes 0.1 (each way) nearer the corner than the outer ones, so each corner is thinner
+    than the walls (1.45 at its middle) and the inner walls' tangent lines lie 0.1 past the outer ones'. The
+    class: a rounded corner thinner than the flats it joins; the flats' patches (offsets of their outer skins)
+    stop 0.05 short of the corner's mean cylinder, and the gap is bridged in the flats' own planes.
+    Mid-surface: the walls' planes 0.75 in, joined round each corner by the cylinder on the mean axis with the
+    mean radius 4.2; 9 faces (4 walls, 4 corners, the floor).
+    Faces: 19 (5 outside and 4 inside walls, 4 outer and 4 inner corners, floor, rim).
+    Volume: the built solid's.
+    """
+    part = rounded_box(80, 60, 30, 5.0, (0, 0, 0)) - rounded_box(77, 57, 30, 3.4, (1.5, 1.5, 1.5))
+    part = single_solid(part)
+    return Fixture(part, part.volume, 19)
+
+
 def bend_off_centre() -> Fixture:
     """A sheet bent 90 degrees between legs of two thicknesses, 40 wide (y): a horizontal leg 1.5 thick (z 0..1.5,
     x 0..50), a vertical leg 1.56 thick (x 53.44..55, z 5..55), the bend's outer arc R 5 about (50, 5) and its
@@ -1170,6 +1186,7 @@ PARTS: list[Callable[[], Fixture]] = [
     vault_off_centre,
     rib_facing_open_ring,
     tray_off_centre_corners,
+    tray_thin_corners,
     bend_off_centre,
 ]
 

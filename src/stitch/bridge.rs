@@ -26,6 +26,9 @@ pub struct LooseEdge {
     pub normal: DVec3,
     /// The outward direction (in the patch, away from it) at each sample.
     pub outwards: Vec<DVec3>,
+    /// The plane of the face the edge bounds (a point on it, its unit normal), when that face is flat up to the
+    /// edge: a flat bridge lying in it continues that face (`step_bridges`).
+    pub plane: Option<[DVec3; 2]>,
 }
 
 impl LooseEdge {
@@ -73,7 +76,8 @@ pub struct StepBridge {
     pub other: usize,
     /// [owner(s0), other'(s0), other'(s1), owner(s1)], other' the other edge moved in by a ramp's run.
     pub quad: [DVec3; 4],
-    /// The side the quad faces: a ramp its patch's, an upright or flat quad its owner's outward direction.
+    /// The side the quad faces: a ramp its patch's, a quad lying in the plane of its owner's face that face's
+    /// normal, any other its owner's outward direction.
     pub normal: DVec3,
     /// For two coaxial arcs, the axis (a point on it, its direction): the quad's sides are arcs about it, each
     /// turning counter-clockwise about the direction from quad[0] to quad[3] and from quad[1] to quad[2].
@@ -182,7 +186,12 @@ const COAXIAL_SHARE: f64 = 1e-3;
 /// measures it along the wall). Between arcs (a thinner rim band above a moulded housing's wall, round its
 /// rounded corners) the ramp is a band of a cone. Each stretch of an edge is bridged once, nearest pairs first,
 /// sorted by (owner, other).
-pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
+///
+/// A flat bridge lying in the plane of one edge's face (within `coplanar`) and not of the other's joins the
+/// planar one: a flat wall running tangentially into a bend whose patch stops a hair from the flat's (the bend's
+/// skins drawn on axes apart) is bridged in the flat's own plane, and the flat's patch merges the quad into its
+/// face; given to the bend's patch it would stay a sliver face of its own, as narrow as the gap.
+pub fn step_bridges(edges: &[LooseEdge], coplanar: f64) -> Vec<StepBridge> {
     let (courses, candidates) = nearest_first(edges, |i, j, courses, parallel| {
         let (ei, ej) = (&edges[i], &edges[j]);
         if ei.patch == ej.patch
@@ -220,11 +229,36 @@ pub fn step_bridges(edges: &[LooseEdge]) -> Vec<StepBridge> {
         if free(bridge.owner, owner) && free(bridge.other, other) {
             used[bridge.owner].push(owner);
             used[bridge.other].push(other);
-            out.push(bridge);
+            out.push(continuing_plane(bridge, edges, coplanar));
         }
     }
     out.sort_by_key(|b| (b.owner, b.other));
     out
+}
+
+/// The bridge given to the edge in whose face's plane the quad lies, its owner's first, facing the way that face
+/// does (`StepBridge::normal`, so that the merge into the face sees one surface, not its reverse); as it is when
+/// it lies in neither.
+fn continuing_plane(bridge: StepBridge, edges: &[LooseEdge], coplanar: f64) -> StepBridge {
+    let continues = |k: usize| {
+        edges[k]
+            .plane
+            .is_some_and(|[origin, normal]| bridge.quad.iter().all(|&q| (q - origin).dot(normal).abs() <= coplanar))
+    };
+    if continues(bridge.owner) {
+        return StepBridge { normal: edges[bridge.owner].normal, ..bridge };
+    }
+    if !continues(bridge.other) {
+        return bridge;
+    }
+    let q = bridge.quad;
+    StepBridge {
+        owner: bridge.other,
+        other: bridge.owner,
+        quad: [q[1], q[0], q[3], q[2]],
+        normal: edges[bridge.other].normal,
+        axis: bridge.axis,
+    }
 }
 
 /// A step bridge between two edges that are one curve at two levels: the `owner` edge swept by `along` onto

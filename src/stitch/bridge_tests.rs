@@ -2,6 +2,8 @@ use glam::DVec3;
 
 use super::*;
 
+const COPLANAR: f64 = 1e-6;
+
 fn loose(patch: usize, thickness: f64, x: f64, z: f64, y: (f64, f64), outward: DVec3) -> LooseEdge {
     let points = (0..5).map(|k| DVec3::new(x, y.0 + (y.1 - y.0) * k as f64 / 4.0, z)).collect();
     open_edge(patch, thickness, points, DVec3::Z, outward)
@@ -20,6 +22,7 @@ fn open_edge(patch: usize, thickness: f64, points: Vec<DVec3>, normal: DVec3, ou
         outwards: vec![outward; points.len()],
         points,
         normal,
+        plane: None,
     }
 }
 
@@ -27,7 +30,7 @@ fn open_edge(patch: usize, thickness: f64, points: Vec<DVec3>, normal: DVec3, ou
 fn two_levels_of_a_thickness_step_meet_through_a_ramp_into_the_thicker_wall() {
     // A t=3 patch at z=1.5 starting at x=50 (outward -x), a t=2 patch at z=1 ending there (outward +x).
     let edges = [loose(0, 3.0, 50.0, 1.5, (60.0, 10.0), -DVec3::X), loose(1, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X)];
-    let bridges = step_bridges(&edges);
+    let bridges = step_bridges(&edges, COPLANAR);
     assert_eq!(bridges.len(), 1);
     let StepBridge { owner, other, quad, .. } = &bridges[0];
     assert_eq!((*owner, *other), (1, 0), "the thinner patch owns the ramp");
@@ -48,7 +51,7 @@ fn a_long_edge_facing_two_shorter_levels_is_bridged_to_each_along_its_own_stretc
         loose(1, 2.0, 50.0, 1.0, (0.0, 30.0), DVec3::X),
         loose(2, 2.6, 50.0, 1.2, (30.0, 60.0), DVec3::X),
     ];
-    let bridges = step_bridges(&edges);
+    let bridges = step_bridges(&edges, COPLANAR);
     let pairs: Vec<(usize, usize)> = bridges.iter().map(|b| (b.owner.min(b.other), b.owner.max(b.other))).collect();
     assert_eq!(pairs, vec![(0, 1), (0, 2)]);
     for (b, (y0, y1)) in bridges.iter().zip([(0.0, 30.0), (30.0, 60.0)]) {
@@ -58,7 +61,7 @@ fn a_long_edge_facing_two_shorter_levels_is_bridged_to_each_along_its_own_stretc
     // Overlapping stretches are still bridged once: a third level along y 20..40 finds the long edge taken.
     let mut crowded = edges.to_vec();
     crowded.push(loose(3, 2.2, 50.0, 1.1, (20.0, 40.0), DVec3::X));
-    assert_eq!(step_bridges(&crowded).iter().filter(|b| b.owner == 3 || b.other == 3).count(), 0);
+    assert_eq!(step_bridges(&crowded, COPLANAR).iter().filter(|b| b.owner == 3 || b.other == 3).count(), 0);
 }
 
 #[test]
@@ -67,20 +70,20 @@ fn a_step_edge_that_saw_a_farther_wall_still_bridges_to_the_other_level_of_its_w
     // thick level's edge reads as rim. Levels of one wall 0.5 apart: the step wins.
     let thin = LooseEdge { nearest: 4.0, wall: (1, 7), ..loose(1, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X) };
     let thick = LooseEdge { open: false, wall: (1, 7), ..loose(0, 3.0, 50.0, 1.5, (60.0, 10.0), -DVec3::X) };
-    assert_eq!(step_bridges(&[thick.clone(), thin.clone()]).len(), 1);
+    assert_eq!(step_bridges(&[thick.clone(), thin.clone()], COPLANAR).len(), 1);
     // Not across two walls, not past a nearer partner, and not between two rim edges.
     let other_wall = LooseEdge { wall: (1, 8), ..thick.clone() };
-    assert!(step_bridges(&[other_wall, thin.clone()]).is_empty());
+    assert!(step_bridges(&[other_wall, thin.clone()], COPLANAR).is_empty());
     let near = LooseEdge { nearest: 0.4, ..thin.clone() };
-    assert!(step_bridges(&[thick.clone(), near]).is_empty());
+    assert!(step_bridges(&[thick.clone(), near], COPLANAR).is_empty());
     let rim = LooseEdge { open: false, ..thin };
-    assert!(step_bridges(&[thick, rim]).is_empty());
+    assert!(step_bridges(&[thick, rim], COPLANAR).is_empty());
 }
 
 #[test]
 fn an_in_plane_gap_is_bridged_flat() {
     let edges = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 2.0, 51.5, 1.0, (0.0, 60.0), -DVec3::X)];
-    let bridges = step_bridges(&edges);
+    let bridges = step_bridges(&edges, COPLANAR);
     assert_eq!(bridges.len(), 1);
     let expected = [(50.0, 0.0), (51.5, 0.0), (51.5, 60.0), (50.0, 60.0)];
     for (q, (x, y)) in bridges[0].quad.iter().zip(expected) {
@@ -89,13 +92,35 @@ fn an_in_plane_gap_is_bridged_flat() {
 }
 
 #[test]
+fn a_flat_bridge_in_the_plane_of_one_edge_s_face_joins_that_face_facing_its_way() {
+    // A bend's patch (no plane at its edge) ends at x = 4.95, a flat wall's patch (plane z = 0.75, normal -z)
+    // starts at x = 5: the bend's edge comes first, but the quad lies in the flat's plane, so the flat owns it,
+    // facing -z as its face does.
+    let bend = loose(0, 1.5, 4.95, 0.75, (0.0, 30.0), DVec3::X);
+    let flat = LooseEdge {
+        normal: -DVec3::Z,
+        plane: Some([DVec3::new(40.0, 15.0, 0.75), -DVec3::Z]),
+        ..loose(1, 1.5, 5.0, 0.75, (30.0, 0.0), -DVec3::X)
+    };
+    let bridges = step_bridges(&[bend.clone(), flat.clone()], COPLANAR);
+    assert_eq!(bridges.len(), 1);
+    let StepBridge { owner, other, quad, normal, .. } = &bridges[0];
+    assert_eq!((*owner, *other, *normal), (1, 0, -DVec3::Z));
+    assert!(quad[0].x == 5.0 && quad[1].x == 4.95 && quad[2].x == 4.95 && quad[3].x == 5.0, "{quad:?}");
+    // Out of its plane (the bend's edge 0.01 above it), the first edge keeps it, facing its outward way.
+    let above = LooseEdge { points: bend.points.iter().map(|p| *p + DVec3::Z * 0.01).collect(), ..bend };
+    let bridges = step_bridges(&[above, flat], COPLANAR);
+    assert_eq!((bridges[0].owner, bridges[0].normal), (0, DVec3::X));
+}
+
+#[test]
 fn no_bridge_between_edges_facing_the_same_way_too_far_or_of_one_patch() {
     let same_way = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 2.0, 50.0, 1.5, (0.0, 60.0), DVec3::X)];
-    assert!(step_bridges(&same_way).is_empty());
+    assert!(step_bridges(&same_way, COPLANAR).is_empty());
     let far = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(1, 2.0, 50.0, 4.0, (0.0, 60.0), -DVec3::X)];
-    assert!(step_bridges(&far).is_empty(), "3 apart, thicker than either wall");
+    assert!(step_bridges(&far, COPLANAR).is_empty(), "3 apart, thicker than either wall");
     let one = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(0, 2.0, 50.0, 1.5, (0.0, 60.0), -DVec3::X)];
-    assert!(step_bridges(&one).is_empty());
+    assert!(step_bridges(&one, COPLANAR).is_empty());
 }
 
 /// A quarter arc about the z axis from angle a0 to a1 (radians), of radius r at height z, sampled as the probes
@@ -116,7 +141,7 @@ fn a_rim_band_over_a_rounded_corner_meets_the_wall_below_through_a_conical_ramp(
         arc(0, 2.0, 10.39, 35.64, (0.0, FRAC_PI_2), DVec3::Z),
         arc(1, 1.27, 10.76, 35.64, (FRAC_PI_2, 0.0), -DVec3::Z),
     ];
-    let bridges = step_bridges(&edges);
+    let bridges = step_bridges(&edges, COPLANAR);
     assert_eq!(bridges.len(), 1, "{bridges:?}");
     let StepBridge { owner, other, quad, axis, .. } = &bridges[0];
     assert_eq!((*owner, *other), (1, 0), "the thinner patch owns the ramp");
@@ -133,7 +158,7 @@ fn a_rim_band_over_a_rounded_corner_meets_the_wall_below_through_a_conical_ramp(
     // Arcs about different axes are no step.
     let mut moved = edges.clone();
     moved[1].points.iter_mut().for_each(|p| p.x += 0.5);
-    assert!(step_bridges(&moved).is_empty());
+    assert!(step_bridges(&moved, COPLANAR).is_empty());
 }
 
 #[test]
@@ -141,7 +166,7 @@ fn a_tube_stepping_between_thicknesses_all_round_meets_through_a_whole_turn_of_a
     // A stepped bore (axis z): the 2.5 mm wall's mid-cylinder (r 17.25) up to z = 6, the 4 mm wall's (r 16.5)
     // from there up; each patch's edge at the step is a whole circle, starting where it ends.
     let edges = [arc(0, 4.0, 16.5, 6.0, (TAU, 0.0), -DVec3::Z), arc(1, 2.5, 17.25, 6.0, (0.0, TAU), DVec3::Z)];
-    let bridges = step_bridges(&edges);
+    let bridges = step_bridges(&edges, COPLANAR);
     assert_eq!(bridges.len(), 1, "{bridges:?}");
     let StepBridge { owner, other, quad, axis, .. } = &bridges[0];
     assert_eq!((*owner, *other), (1, 0), "the thinner patch owns the ramp");
@@ -154,7 +179,7 @@ fn a_tube_stepping_between_thicknesses_all_round_meets_through_a_whole_turn_of_a
     assert!((radius(quad[1]) - 16.5).abs() < 1e-9 && (quad[1].z - 7.25).abs() < 1e-9, "{quad:?}");
     // The whole circle is taken: a third level round the same bore finds no stretch left.
     let crowded = [edges[0].clone(), edges[1].clone(), arc(2, 2.6, 17.3, 6.0, (0.0, TAU), DVec3::Z)];
-    assert_eq!(step_bridges(&crowded).len(), 1);
+    assert_eq!(step_bridges(&crowded, COPLANAR).len(), 1);
 }
 
 /// A ruling of a cylinder of radius `r` about the z axis at angle `a` (radians), from z0 to z1, of patch `patch`
@@ -228,7 +253,7 @@ fn ramps_meeting_at_a_pockets_convex_corner_get_the_notch_between_their_feet_fil
         line(0, 2.0, at(20.0, 20.0, z_thick), at(20.0, 40.0, z_thick), DVec3::X),
         line(0, 2.0, at(20.0, 20.0, z_thick), at(30.0, 20.0, z_thick), DVec3::Y),
     ];
-    let bridges = step_bridges(&edges);
+    let bridges = step_bridges(&edges, COPLANAR);
     assert_eq!(bridges.len(), 2, "{bridges:?}");
     let corners = bridge_corners(&bridges, &edges, 1e-9);
     assert_eq!(corners.len(), 1, "{corners:?}");
@@ -252,7 +277,7 @@ fn bridges_meeting_at_a_sloped_pads_corner_get_the_notch_out_to_the_thinner_patc
         line(1, 4.0, at(97.5, 47.5, 2.0), at(97.5, 92.5, 2.0), -DVec3::X),
         line(1, 4.0, at(97.5, 47.5, 2.0), at(142.5, 47.5, 2.0), -DVec3::Y),
     ];
-    let bridges = step_bridges(&edges);
+    let bridges = step_bridges(&edges, COPLANAR);
     assert_eq!(bridges.len(), 2, "{bridges:?}");
     let corners = bridge_corners(&bridges, &edges, 1e-9);
     assert_eq!(corners.len(), 1, "{corners:?}");
@@ -273,7 +298,7 @@ fn ramps_meeting_at_a_pockets_reflex_corner_overlap_and_get_no_fill() {
         line(0, 2.0, at(56.0, 26.0, 1.0), at(56.0, 40.0, 1.0), -DVec3::X),
         line(0, 2.0, at(56.0, 26.0, 1.0), at(70.0, 26.0, 1.0), -DVec3::Y),
     ];
-    let bridges = step_bridges(&edges);
+    let bridges = step_bridges(&edges, COPLANAR);
     assert_eq!(bridges.len(), 2, "{bridges:?}");
     assert!(bridge_corners(&bridges, &edges, 1e-9).is_empty());
 }
@@ -298,7 +323,7 @@ fn two_levels_of_one_wavy_outline_meet_through_a_ramp_that_follows_it() {
     // patch at z=1 beyond the wave (outward to the pocket's side), the same curve, one wall.
     let thin = LooseEdge { wall: (1, 0), ..wavy(0, 1.0, 1.5, (0.0, 20.0), -1.0) };
     let thick = LooseEdge { wall: (1, 0), open: false, ..wavy(1, 2.0, 1.0, (20.0, 0.0), -1.0) };
-    assert!(step_bridges(&[thin.clone(), thick.clone()]).is_empty(), "neither a line nor an arc");
+    assert!(step_bridges(&[thin.clone(), thick.clone()], COPLANAR).is_empty(), "neither a line nor an arc");
     let steps = swept_steps(&[thin.clone(), thick.clone()], &[false, false]);
     assert_eq!(steps.len(), 1, "{steps:?}");
     let SweptStep { owner, other, along, run } = steps[0];

@@ -11,7 +11,7 @@ use super::{kept_faces, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
 use crate::kernel::protocol::{CornerRequest, Extended, GatherPart, Gathered, MadeStrip, Request, StripRequest};
 use crate::kernel::{FuseKind, Kernel, SidecarError};
-use crate::model::shapes::{EdgeProbe, Fused};
+use crate::model::shapes::{EdgeProbe, Fused, FusedFace};
 use crate::trim::Branch;
 use glam::DVec3;
 
@@ -144,7 +144,7 @@ pub(super) fn grow<K: Kernel>(
         grows.push(grow);
     }
     let Steps { quads: steps, corners: step_corners, swept, bridged } =
-        step_quads(&open_edges, patches, solids, pass == Pass::Joints, fuzzy, tally);
+        step_quads(fused, &open_edges, patches, solids, pass == Pass::Joints, fuzzy, tally);
     let planned: Vec<Planned> =
         grows.into_iter().enumerate().filter(|(k, _)| !bridged.contains(k)).filter_map(|(_, g)| g).collect();
     if pass != Pass::Joints && planned.is_empty() && steps.is_empty() && swept.is_empty() {
@@ -281,6 +281,7 @@ struct Steps {
 /// and the free edges (indices) bridged. The edges that found no partner and no bridge are tallied as having no
 /// partner.
 fn step_quads(
+    fused: &Fused,
     open: &[OpenEdge],
     patches: &[PatchInfo],
     solids: &[SolidMesh],
@@ -288,6 +289,7 @@ fn step_quads(
     fuzzy: f64,
     tally: &mut JointTally,
 ) -> Steps {
+    let same_point = same_point(fuzzy);
     let edges: Vec<bridge::LooseEdge> = open
         .iter()
         .map(|e| {
@@ -304,13 +306,13 @@ fn step_quads(
                 points: p.points.clone(),
                 normal: p.normals[mid],
                 outwards: p.outward.clone(),
+                plane: flat_up_to(&fused.faces[e.face], &p.points, same_point),
             }
         })
         .collect();
     let mut bridged = vec![false; open.len()];
     let mut out = Vec::new();
-    let steps = bridge::step_bridges(&edges);
-    let same_point = same_point(fuzzy);
+    let steps = bridge::step_bridges(&edges, same_point);
     let step_corners: Vec<(usize, CornerRequest)> = bridge::bridge_corners(&steps, &edges, same_point)
         .into_iter()
         .filter(|&(owner, quad, _)| {
@@ -361,6 +363,13 @@ fn step_quads(
     }
     let bridged = open.iter().zip(&bridged).filter(|(_, &b)| b).map(|(e, _)| e.free).collect();
     Steps { quads: out, corners: step_corners, swept, bridged }
+}
+
+/// The plane of `face` (its point and normal) when the samples of an edge of it lie in that plane within
+/// `tolerance`: the face is flat up to the edge (a curved face's tangent plane at its middle leaves its edges).
+fn flat_up_to(face: &FusedFace, samples: &[DVec3], tolerance: f64) -> Option<[DVec3; 2]> {
+    let normal = face.normal.try_normalize()?;
+    samples.iter().all(|&q| (q - face.point).dot(normal).abs() <= tolerance).then_some([face.point, normal])
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
