@@ -444,12 +444,12 @@ pub fn stitch_part<K: Kernel>(
                 faces: Vec::new(),
             }));
             warnings.extend(open_edges_warning(&s.free, &s.open_patches));
+            warnings.extend(joint_warnings(&s.joints, &s.open_patches));
             (s.fused, s.keep, s.joints, Some(s.free))
         }
         Err(e) if e.code().is_some() => return Ok(unstitched(Trimmed { fused, keep, branches }, &e.to_string())),
         Err(e) => return Err(e),
     };
-    warnings.extend(joint_warnings(&joints));
     Ok(Outcome { fused, keep, branches, joints, free, warnings })
 }
 
@@ -465,10 +465,14 @@ pub fn unstitched(trimmed: Trimmed, why: &str) -> Outcome {
     Outcome { fused, keep, branches, joints: Vec::new(), free: None, warnings }
 }
 
-fn joint_warnings(joints: &[JointReport]) -> Vec<Warning> {
+/// The joints not made, as warnings. Edges that met no patch are said only for patches still open after
+/// stitching: another patch's strip (a T-joint onto it, a bridge it owns) may have closed them in the same pass,
+/// and the report's joints keep what each pass found.
+fn joint_warnings(joints: &[JointReport], open_patches: &BTreeSet<usize>) -> Vec<Warning> {
     joints
         .iter()
         .filter(|j| j.status != "extended")
+        .filter(|j| j.status != "no_partner" || j.patches.iter().any(|id| open_patches.contains(&(id - 1))))
         .map(|j| Warning {
             code: "joint_failed",
             message: match j.status {

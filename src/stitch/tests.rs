@@ -18,6 +18,19 @@ fn open_edges_are_said_once_with_their_patches() {
     assert!(open_edges_warning(&FreeEdges { open_edges: 0, ..free }, &BTreeSet::new()).is_none());
 }
 
+#[test]
+fn edges_that_met_no_patch_are_warned_only_for_patches_still_open() {
+    // Patch 1's edge met no patch but another patch's strip closed it; patch 2's is still open (0-based 1); a
+    // joint the kernel could not grow is warned whatever is open.
+    let none = |id: usize| JointReport { patches: vec![id], kind: "none", status: "no_partner", edges: 1, length: 5.0 };
+    let failed = JointReport { status: "kernel_failed", ..report(vec![3, 4], "t", 1, 7.0) };
+    let warnings = joint_warnings(&[none(1), none(2), failed], &BTreeSet::from([1]));
+    let messages: Vec<&str> = warnings.iter().map(|w| w.message.as_str()).collect();
+    assert_eq!(messages.len(), 2, "{messages:?}");
+    assert!(messages[0].starts_with("patch 2: 1 open edge(s)"), "{messages:?}");
+    assert!(messages[1].starts_with("t joint of patches [3, 4]"), "{messages:?}");
+}
+
 fn v(p: DVec3) -> Value {
     json!([p.x, p.y, p.z])
 }
