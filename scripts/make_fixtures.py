@@ -1096,6 +1096,28 @@ def tray_thin_corners() -> Fixture:
     return Fixture(part, part.volume, 19)
 
 
+def chamfered_box(dx: float, dy: float, dz: float, leg: float, origin: tuple[float, float, float]) -> Solid:
+    """A box from `origin`, its four vertical edges chamfered 45 degrees with legs `leg`."""
+    part = box(*origin, dx, dy, dz)
+    return part.chamfer(leg, None, part.edges().filter_by(Axis.Z))
+
+
+def tray_bevelled_corners() -> Fixture:
+    """An open tray 80 x 60 x 30, walls and floor 2, its vertical corners bevelled 45 degrees on both skins:
+    legs 2.5 outside, 2.5 - 2 (2 - sqrt 2) inside, so each corner is a diagonal strip of wall 2 thick whose inner
+    face (1.88 wide) is narrower than the wall is thick. The class: a box whose corners are cut by bevels no
+    wider than its walls: the bevels are the corner's wall, not a lip (the inner bevel meets the floor by its short
+    end) and not a chamfer to suppress. Mid-surface: the walls' planes 1 in, joined round each corner by the
+    bevels' mid-plane; 9 faces (4 walls, 4 corner strips, the floor).
+    Faces: 19 (4 outside and 4 inside walls, 4 outer and 4 inner bevels, floor outside and inside, rim).
+    Volume: the built solid's.
+    """
+    inner_leg = 2.5 - 2.0 * (2.0 - math.sqrt(2.0))
+    part = chamfered_box(80, 60, 30, 2.5, (0, 0, 0)) - chamfered_box(76, 56, 30, inner_leg, (2, 2, 2))
+    part = single_solid(part)
+    return Fixture(part, part.volume, 19)
+
+
 def bend_off_centre() -> Fixture:
     """A sheet bent 90 degrees between legs of two thicknesses, 40 wide (y): a horizontal leg 1.5 thick (z 0..1.5,
     x 0..50), a vertical leg 1.56 thick (x 53.44..55, z 5..55), the bend's outer arc R 5 about (50, 5) and its
@@ -1187,6 +1209,7 @@ PARTS: list[Callable[[], Fixture]] = [
     rib_facing_open_ring,
     tray_off_centre_corners,
     tray_thin_corners,
+    tray_bevelled_corners,
     bend_off_centre,
 ]
 

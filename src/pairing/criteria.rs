@@ -8,7 +8,7 @@ use super::overlap::{self, Overlap};
 use super::wall_class::CHUNKY_SHARE;
 use super::{Pair, PairKind, Rejection, Thickness};
 use crate::geom::angle_between;
-use crate::model::face_graph::{Convexity, Face, FaceGraph, FaceId, Mesh, Surface};
+use crate::model::face_graph::{Convexity, EdgeId, Face, FaceGraph, FaceId, Mesh, Surface};
 use crate::model::tolerance::Tolerances;
 
 /// The largest thickness a pair of skins `sizes` (each `[length, width]`, see [`FaceGraph::face_size`]) may
@@ -378,17 +378,47 @@ pub(super) fn reach(graph: &FaceGraph, face: FaceId, pairable: &[bool]) -> Vec<F
 /// A wall skin and a face square to it within this cosine (about 3 degrees) meet as a ledge on the wall.
 const SQUARE_COS: f64 = 0.05;
 
-/// Planar `face` meets, along a concave edge, a planar skin of a wall (a face with pairs) square to it.
+/// Planar `face` meets, along a concave edge, a planar skin of a wall (a face with pairs) square to it, and is no
+/// bevel between two walls (`bevel_between_walls`): the narrow face runs along that skin as a lip's underside
+/// runs along its plate.
 fn ledge(graph: &FaceGraph, face: FaceId, pairs_of: &[Vec<&Pair>]) -> bool {
     let normal = graph.faces[face].normal;
-    graph.faces[face].loops.iter().flatten().filter(|&&e| graph.edges[e].convexity == Convexity::Concave).any(|&e| {
-        graph.across(e, face).any(|g| {
-            !pairs_of[g].is_empty()
-                && graph.faces[g].surface.is_plane()
-                && graph.faces[g].normal.dot(normal).abs() < SQUARE_COS
-        })
-    })
+    let square =
+        graph.faces[face].loops.iter().flatten().filter(|&&e| graph.edges[e].convexity == Convexity::Concave).any(
+            |&e| {
+                graph.across(e, face).any(|g| {
+                    !pairs_of[g].is_empty()
+                        && graph.faces[g].surface.is_plane()
+                        && graph.faces[g].normal.dot(normal).abs() < SQUARE_COS
+                })
+            },
+        );
+    square && !bevel_between_walls(graph, face, pairs_of)
 }
+
+/// Whether planar `face` is the inner bevel of a corner cut on both skins: its two longest edges are concave
+/// bevels (turning by 10 to 80 degrees) onto two planar skins of walls (faces with pairs). Standing on a floor,
+/// it meets the floor square to it by its short end, as a lip's underside meets its plate along its length;
+/// the bevels are the corner's wall.
+fn bevel_between_walls(graph: &FaceGraph, face: FaceId, pairs_of: &[Vec<&Pair>]) -> bool {
+    let normal = graph.faces[face].normal;
+    let mut edges: Vec<EdgeId> = graph.faces[face].loops.iter().flatten().copied().collect();
+    edges.sort_by(|&a, &b| graph.edges[b].length.total_cmp(&graph.edges[a].length).then(a.cmp(&b)));
+    let onto_wall = |e: EdgeId| {
+        let g = graph.across(e, face).next()?;
+        let cos = graph.faces[g].normal.dot(normal).abs();
+        let bevel = graph.edges[e].convexity == Convexity::Concave && (BEVEL_COS_MIN..=BEVEL_COS_MAX).contains(&cos);
+        (bevel && graph.faces[g].surface.is_plane() && !pairs_of[g].is_empty()).then_some(g)
+    };
+    match edges[..] {
+        [a, b, ..] => matches!((onto_wall(a), onto_wall(b)), (Some(ga), Some(gb)) if ga != gb),
+        _ => false,
+    }
+}
+
+/// A bevel turns by 10 to 80 degrees from the faces it joins: the cosines between their normals.
+const BEVEL_COS_MIN: f64 = 0.173_648_177_666_930_4;
+const BEVEL_COS_MAX: f64 = 0.984_807_753_012_208;
 
 fn all_planar(graph: &FaceGraph, faces: &[FaceId]) -> bool {
     faces.iter().all(|&f| graph.faces[f].surface.is_plane())

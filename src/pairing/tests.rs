@@ -731,6 +731,40 @@ fn a_lip_under_a_plate_end_is_no_wall_a_chamfered_corner_is() {
 }
 
 #[test]
+fn a_bevel_cutting_a_trays_corner_stands_on_the_floor_by_its_end_and_stays_a_wall() {
+    // A tray's vertical corner bevelled on both skins: the outer bevel 0 (4.0 wide, 30 tall), the inner bevel 1
+    // (1.8 wide, narrower than the 2.0 between them) standing on the floor 2 (paired with the bottom 3) along a
+    // concave edge 1.8 long, its end, and meeting the inner skins 4 and 6 of two walls (paired with 5 and 7) at
+    // 45 degrees along its 28 long sides (its top meets the rim 8). No lip: the pair stays. With one side
+    // meeting a face that is no wall skin, the narrow face standing on the floor is a lip's underside.
+    let out = DVec3::new(-1.0, -1.0, 0.0).normalize();
+    let along = DVec3::new(1.0, -1.0, 0.0).normalize();
+    for (second_side, lip) in [(6, false), (8, true)] {
+        let faces = vec![
+            rect(-along * 2.0, along * 4.0, DVec3::Z * 30.0, out),
+            rect(-out * 2.0 - along * 0.9 + DVec3::Z * 2.0, DVec3::Z * 28.0, along * 1.8, -out),
+            rect(DVec3::new(0.0, 0.0, 2.0), DVec3::X * 50.0, DVec3::Y * 50.0, DVec3::Z),
+            rect(DVec3::ZERO, DVec3::Y * 50.0, DVec3::X * 50.0, -DVec3::Z),
+            rect(DVec3::new(10.0, 2.0, 2.0), DVec3::X * 30.0, DVec3::Z * 28.0, DVec3::Y),
+            rect(DVec3::new(10.0, 0.0, 0.0), DVec3::Z * 30.0, DVec3::X * 30.0, -DVec3::Y),
+            rect(DVec3::new(2.0, 10.0, 2.0), DVec3::Z * 28.0, DVec3::Y * 30.0, DVec3::X),
+            rect(DVec3::new(0.0, 10.0, 0.0), DVec3::Y * 30.0, DVec3::Z * 30.0, -DVec3::X),
+            rect(DVec3::new(0.0, 0.0, 30.0), DVec3::X, DVec3::Y, DVec3::Z),
+        ];
+        let edges = [
+            (1, 2, Convexity::Concave, 1.8),
+            (1, 4, Convexity::Concave, 28.0),
+            (1, second_side, Convexity::Concave, 28.0),
+            (1, 8, Convexity::Convex, 1.8),
+            (0, 3, Convexity::Convex, 4.0),
+        ];
+        let pairing = detect(&graph_with_lengths(faces, &edges), &tol(), &[true; 9]);
+        let bevels = pairing.pairs.iter().any(|p| p.faces == [0, 1]);
+        assert_eq!(bevels, !lip, "the inner bevel's second side on face {second_side}");
+    }
+}
+
+#[test]
 fn a_near_miss_across_the_wall_says_more_than_a_face_beside_it() {
     // The near miss kept per face is the candidate that passed most tests. A face beside this one (its box within
     // reach, but lying over none of it: overlap 0) says less than a partner across the wall that failed on its
