@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use super::features::BEVEL_TURN_DEG;
 use super::levels::one_plane;
 use super::overlap::{self, Overlap};
 use super::wall_class::CHUNKY_SHARE;
@@ -383,31 +384,27 @@ const SQUARE_COS: f64 = 0.05;
 /// runs along its plate.
 fn ledge(graph: &FaceGraph, face: FaceId, pairs_of: &[Vec<&Pair>]) -> bool {
     let normal = graph.faces[face].normal;
-    let square =
-        graph.faces[face].loops.iter().flatten().filter(|&&e| graph.edges[e].convexity == Convexity::Concave).any(
-            |&e| {
-                graph.across(e, face).any(|g| {
-                    !pairs_of[g].is_empty()
-                        && graph.faces[g].surface.is_plane()
-                        && graph.faces[g].normal.dot(normal).abs() < SQUARE_COS
-                })
-            },
-        );
-    square && !bevel_between_walls(graph, face, pairs_of)
+    let square_skin = |g: FaceId| {
+        !pairs_of[g].is_empty()
+            && graph.faces[g].surface.is_plane()
+            && graph.faces[g].normal.dot(normal).abs() < SQUARE_COS
+    };
+    let mut concave =
+        graph.faces[face].loops.iter().flatten().filter(|&&e| graph.edges[e].convexity == Convexity::Concave);
+    concave.any(|&e| graph.across(e, face).any(square_skin)) && !bevel_between_walls(graph, face, pairs_of)
 }
 
 /// Whether planar `face` is the inner bevel of a corner cut on both skins: its two longest edges are concave
-/// bevels (turning by 10 to 80 degrees) onto two planar skins of walls (faces with pairs). Standing on a floor,
-/// it meets the floor square to it by its short end, as a lip's underside meets its plate along its length;
-/// the bevels are the corner's wall.
+/// bevels (`BEVEL_TURN_DEG`) onto two planar skins of walls (faces with pairs). Standing on a floor, it meets
+/// the floor square to it by its short end, as a lip's underside meets its plate along its length; the bevels
+/// are the corner's wall.
 fn bevel_between_walls(graph: &FaceGraph, face: FaceId, pairs_of: &[Vec<&Pair>]) -> bool {
-    let normal = graph.faces[face].normal;
     let mut edges: Vec<EdgeId> = graph.faces[face].loops.iter().flatten().copied().collect();
     edges.sort_by(|&a, &b| graph.edges[b].length.total_cmp(&graph.edges[a].length).then(a.cmp(&b)));
     let onto_wall = |e: EdgeId| {
+        let edge = &graph.edges[e];
         let g = graph.across(e, face).next()?;
-        let cos = graph.faces[g].normal.dot(normal).abs();
-        let bevel = graph.edges[e].convexity == Convexity::Concave && (BEVEL_COS_MIN..=BEVEL_COS_MAX).contains(&cos);
+        let bevel = edge.convexity == Convexity::Concave && BEVEL_TURN_DEG.contains(&edge.angle.abs().to_degrees());
         (bevel && graph.faces[g].surface.is_plane() && !pairs_of[g].is_empty()).then_some(g)
     };
     match edges[..] {
@@ -415,10 +412,6 @@ fn bevel_between_walls(graph: &FaceGraph, face: FaceId, pairs_of: &[Vec<&Pair>])
         _ => false,
     }
 }
-
-/// A bevel turns by 10 to 80 degrees from the faces it joins: the cosines between their normals.
-const BEVEL_COS_MIN: f64 = 0.173_648_177_666_930_4;
-const BEVEL_COS_MAX: f64 = 0.984_807_753_012_208;
 
 fn all_planar(graph: &FaceGraph, faces: &[FaceId]) -> bool {
     faces.iter().all(|&f| graph.faces[f].surface.is_plane())

@@ -218,13 +218,15 @@ fn hole_diameter(graph: &FaceGraph, region: &BTreeSet<FaceId>, tolerance: f64) -
     first.map(|(_, _, r)| 2.0 * r)
 }
 
+/// How far (degrees) the faces at a bevel's edge turn: under 10 degrees is a tangent blend or a facet, over 80 a
+/// square rim or step.
+pub const BEVEL_TURN_DEG: std::ops::RangeInclusive<f64> = 10.0..=80.0;
+
 /// The width of plane `face` if it is a chamfer: a plane whose two longest edges are bevels of one kind (both
 /// convex or both concave, each turning by BEVEL degrees) onto two different faces, at least one a wall skin
 /// and not the two sides of one wall. The width is the area over the mean length of the two edges (exact for
 /// the trapezoid of a mitred chamfer).
 fn chamfer_width(graph: &FaceGraph, roles: &[FaceRole], face: FaceId) -> Option<f64> {
-    /// A turn under 10 degrees is a tangent blend or a facet, one over 80 a square rim or step.
-    const BEVEL: std::ops::RangeInclusive<f64> = 10.0..=80.0;
     let f = &graph.faces[face];
     let mut edges: Vec<EdgeId> = f.loops.iter().flatten().copied().collect();
     edges.sort_by(|&a, &b| graph.edges[b].length.total_cmp(&graph.edges[a].length).then(a.cmp(&b)));
@@ -233,7 +235,7 @@ fn chamfer_width(graph: &FaceGraph, roles: &[FaceRole], face: FaceId) -> Option<
         let edge = &graph.edges[e];
         let turn = edge.angle.abs().to_degrees();
         let other = graph.across(e, face).next()?;
-        (BEVEL.contains(&turn) && edge.faces.len() == 2).then_some((other, edge.convexity))
+        (BEVEL_TURN_DEG.contains(&turn) && edge.faces.len() == 2).then_some((other, edge.convexity))
     };
     let ((fa, ca), (fb, cb)) = (neighbour(a)?, neighbour(b)?);
     let one_wall = match (&roles[fa], &roles[fb]) {
