@@ -1096,6 +1096,25 @@ def tray_thin_corners() -> Fixture:
     return Fixture(part, part.volume, 19)
 
 
+def tub_thin_corners() -> Fixture:
+    """An open tub 80 x 60 x 30, walls and floor 1.5, every edge but the rim's rounded R 5 outside and R 3.4
+    inside: the inner bends' axes and the inner corners' centres sit 0.1 (each way) nearer the corner than the
+    outer ones. The class: bends and corners drawn on axes and centres apart meeting each other, so that each bend
+    skin ends, along its axis, where its corners begin, and the two skins' ends lie 0.1 apart: the mean
+    cylinder's axial range is the mean of theirs, ending where the mean spheres begin. Mid-surface: 17 faces (5
+    planes, 8 cylinders R 4.2 on the mean axes, 4 spheres R 4.2 on the mean centres), meeting edge to edge.
+    Faces: 35 (5 planes, 8 cylinders and 4 spheres on each side, the rim).
+    Volume: the built solid's.
+    """
+    def tub(dx: float, dy: float, dz: float, radius: float, origin: tuple[float, float, float]) -> Solid:
+        part = box(*origin, dx, dy, dz)
+        rim = part.edges().group_by(Axis.Z)[-1]
+        return part.fillet(radius, [e for e in part.edges() if e not in rim])
+
+    part = single_solid(tub(80, 60, 30, 5.0, (0, 0, 0)) - tub(77, 57, 40, 3.4, (1.5, 1.5, 1.5)))
+    return Fixture(part, part.volume, 35)
+
+
 def chamfered_box(dx: float, dy: float, dz: float, leg: float, origin: tuple[float, float, float]) -> Solid:
     """A box from `origin`, its four vertical edges chamfered 45 degrees with legs `leg`."""
     part = box(*origin, dx, dy, dz)
@@ -1210,6 +1229,7 @@ PARTS: list[Callable[[], Fixture]] = [
     tray_off_centre_corners,
     tray_thin_corners,
     tray_bevelled_corners,
+    tub_thin_corners,
     bend_off_centre,
 ]
 

@@ -124,6 +124,9 @@ OWN_WALL_FACTOR = 2.0
 TANGENT_DIRECTIONS = 8
 # Two cylinder axes within this angle (radians) are parallel: coaxial partners clip a cylindrical face.
 PARALLEL_AXES = 1e-6
+# A face is the whole (u, v) box of its parameter range when their areas differ by no more than this share (the
+# mean cylinder's range is moved only for such a face: its boundary is four iso-lines).
+RECTANGLE_SHARE = 1e-6
 # A partner's sector starts at this share of the smaller radius: short of the axis, where a revolved section
 # degenerates and the splitter misses the sector's sides, and still inside any wall of that cylinder.
 SECTOR_INNER_SHARE = 0.5

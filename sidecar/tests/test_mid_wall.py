@@ -79,9 +79,11 @@ def test_a_cylinder_is_offset_at_the_mean():
     assert BRepAdaptor_Surface(moved, True).Cylinder().Radius() == pytest.approx(9.0)
 
 
-def quarter(centre, radius):
-    """The curved face of a quarter cylinder 5 high on a vertical axis through `centre`, from angle 0 to 90."""
-    solid = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(*centre, 0), gp_Dir(0, 0, 1)), radius, 5.0, math.pi / 2).Shape()
+def quarter(centre, radius, base=0.0):
+    """The curved face of a quarter cylinder 5 high on a vertical axis through `centre` from z = `base`, from
+    angle 0 to 90."""
+    axis = gp_Ax2(gp_Pnt(*centre, base), gp_Dir(0, 0, 1))
+    solid = BRepPrimAPI_MakeCylinder(axis, radius, 5.0, math.pi / 2).Shape()
     return next(f for f in map(TopoDS.Face, subshapes(solid, TopAbs_FACE)) if kind(f) == GeomAbs_Cylinder)
 
 
@@ -98,6 +100,16 @@ def test_a_bend_drawn_on_centres_apart_goes_onto_the_mean_cylinder():
     ends = [BRep_Tool.Pnt_s(TopoDS.Vertex(v)) for v in subshapes(moved, TopAbs_VERTEX)]
     ends = [p for p in ends if abs(p.Z()) < 1e-9]
     assert sorted({(round(p.X(), 9), round(p.Y(), 9)) for p in ends}) == [(0.05, 4.35), (4.35, 0.05)]
+
+
+def test_the_mean_cylinder_ends_half_way_between_its_skins_ends_along_the_axis():
+    # A tub's vertical corner drawn on axes apart: the outer skin from z = 0, the inner from z = -0.1 (its
+    # bottom corner's centre lies 0.1 lower too). The mean cylinder runs from z = -0.05 to 4.95, where the mean
+    # sphere below and the rim's mid-line meet it; kept at the outer skin's range it stood 0.05 off the sphere.
+    moved = mid_wall_face(quarter((0, 0), 5.0), [quarter((0.1, 0.1), 3.6, base=-0.1)], -0.76)
+    assert BRepCheck_Analyzer(moved).IsValid()
+    heights = {round(BRep_Tool.Pnt_s(TopoDS.Vertex(v)).Z(), 9) for v in subshapes(moved, TopAbs_VERTEX)}
+    assert heights == {-0.05, 4.95}
 
 
 def test_the_moved_plane_runs_on_past_the_face_at_mid_wall():

@@ -26,7 +26,7 @@ from OCP.GeomConvert import GeomConvert
 from OCP.GeomLProp import GeomLProp_SLProps
 from OCP.IntCurvesFace import IntCurvesFace_ShapeIntersector
 from OCP.ShapeFix import ShapeFix_Face
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_VERTEX, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Face
@@ -43,10 +43,11 @@ from ..constants import (
     MID_WALL_SPANS,
     NORMAL_RESOLUTION,
     PARALLEL_AXES,
+    RECTANGLE_SHARE,
 )
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import area_samples
-from ..geom.topology import diagonal, subshapes
+from ..geom.topology import diagonal, subshapes, surface_props
 from .face_offset import offset_face
 
 MOVABLE_KINDS = (GeomAbs_BSplineSurface, GeomAbs_BezierSurface, GeomAbs_Plane)
@@ -88,7 +89,8 @@ def _mean_cylinder(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Fac
     mean radius, in the same parameters (the axis system moved across, not turned): the mid-surface of a bend
     whose two arcs were drawn on centres apart. Each skin's tangent line with a flat beside the bend lies on the
     flat's normal at the same angle, so the mean cylinder runs into the flat's mid-plane there, tangent to it,
-    whatever the flat's thickness. None when the partners are not such cylinders."""
+    whatever the flat's thickness. Along the axis it runs half-way between the skins' ends (`_mean_span`) where
+    it can. None when the partners are not such cylinders."""
     surfaces = _all_of_kind([face, *partners], GeomAbs_Cylinder)
     if surfaces is None or not partners:
         return None
@@ -103,7 +105,32 @@ def _mean_cylinder(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Fac
     if any(a.Subtracted(across[0]).Magnitude() > CONFUSION for a in across[1:]):
         return None
     radius = 0.5 * (cylinder.Radius() + others[0].Radius())
-    return _sound_on(Geom_CylindricalSurface(cylinder.Position().Translated(across[0] * 0.5), radius), face)
+    mean = Geom_CylindricalSurface(cylinder.Position().Translated(across[0] * 0.5), radius)
+    span = _mean_span(face, partners, cylinder)
+    if span is not None:
+        u0, u1, _, _ = BRepTools.UVBounds_s(face)
+        maker = BRepBuilderAPI_MakeFace(mean, u0, u1, *span, CONFUSION)
+        if maker.IsDone() and BRepCheck_Analyzer(maker.Face()).IsValid():
+            return TopoDS.Face(maker.Face().Oriented(face.Orientation()))
+    return _sound_on(mean, face)
+
+
+def _mean_span(face: TopoDS_Face, partners: list[TopoDS_Face], cylinder) -> tuple[float, float] | None:
+    """The axial range (the cylinder's v) half-way between the face's and its partners': a bend between two
+    others (a tub's bottom edge between its corners) ends where they begin, and on axes apart the skins' ends
+    lie apart along the axis too, by the other bends' offsets. None unless the face is the whole (u, v) box of
+    its range (four iso-lines), whose range alone can be moved."""
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    box = cylinder.Radius() * (u1 - u0) * (v1 - v0)
+    if abs(surface_props(face).Mass() - box) > RECTANGLE_SHARE * box:
+        return None
+    origin, direction = cylinder.Location(), gp_Vec(cylinder.Axis().Direction())
+    corners = [BRep_Tool.Pnt_s(TopoDS.Vertex(v)) for p in partners for v in subshapes(p, TopAbs_VERTEX)]
+    along = [gp_Vec(origin, corner).Dot(direction) for corner in corners]
+    if not along:
+        return None
+    low, high = 0.5 * (v0 + min(along)), 0.5 * (v1 + max(along))
+    return (low, high) if high - low > CONFUSION else None
 
 
 def _all_of_kind(faces: list[TopoDS_Face], kind) -> list[BRepAdaptor_Surface] | None:
