@@ -1065,6 +1065,14 @@ def rounded_box(dx: float, dy: float, dz: float, radius: float, origin: tuple[fl
     return part.fillet(radius, part.edges().filter_by(Axis.Z))
 
 
+def rounded_tray(inner_radius: float) -> Fixture:
+    """An open tray 80 x 60 x 30, walls and floor 1.5, its vertical corners rounded R 5 outside and
+    `inner_radius` inside (19 faces)."""
+    inner = rounded_box(77, 57, 30, inner_radius, (1.5, 1.5, 1.5))
+    part = single_solid(rounded_box(80, 60, 30, 5.0, (0, 0, 0)) - inner)
+    return Fixture(part, part.volume, 19)
+
+
 def tray_off_centre_corners() -> Fixture:
     """An open tray 80 x 60 x 30, walls and floor 1.5, its vertical corners rounded R 5 outside and R 3.6 inside:
     the inner arcs, tangent to the inner walls, sit on axes 0.1 (each way) off the outer ones, as when the two
@@ -1075,9 +1083,7 @@ def tray_off_centre_corners() -> Fixture:
     Faces: 19 (5 outside and 4 inside walls, 4 outer and 4 inner corners, floor, rim).
     Volume: the built solid's.
     """
-    part = rounded_box(80, 60, 30, 5.0, (0, 0, 0)) - rounded_box(77, 57, 30, 3.6, (1.5, 1.5, 1.5))
-    part = single_solid(part)
-    return Fixture(part, part.volume, 19)
+    return rounded_tray(3.6)
 
 
 def tray_thin_corners() -> Fixture:
@@ -1091,9 +1097,7 @@ def tray_thin_corners() -> Fixture:
     Faces: 19 (5 outside and 4 inside walls, 4 outer and 4 inner corners, floor, rim).
     Volume: the built solid's.
     """
-    part = rounded_box(80, 60, 30, 5.0, (0, 0, 0)) - rounded_box(77, 57, 30, 3.4, (1.5, 1.5, 1.5))
-    part = single_solid(part)
-    return Fixture(part, part.volume, 19)
+    return rounded_tray(3.4)
 
 
 def tub_thin_corners() -> Fixture:
