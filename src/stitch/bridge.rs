@@ -240,11 +240,7 @@ pub fn step_bridges(edges: &[LooseEdge], coplanar: f64) -> Vec<StepBridge> {
 /// does (`StepBridge::normal`, so that the merge into the face sees one surface, not its reverse); as it is when
 /// it lies in neither.
 fn continuing_plane(bridge: StepBridge, edges: &[LooseEdge], coplanar: f64) -> StepBridge {
-    let continues = |k: usize| {
-        edges[k]
-            .plane
-            .is_some_and(|[origin, normal]| bridge.quad.iter().all(|&q| (q - origin).dot(normal).abs() <= coplanar))
-    };
+    let continues = |k: usize| edges[k].plane.is_some_and(|plane| in_plane(&bridge.quad, plane, coplanar));
     if continues(bridge.owner) {
         return StepBridge { normal: edges[bridge.owner].normal, ..bridge };
     }
@@ -259,6 +255,11 @@ fn continuing_plane(bridge: StepBridge, edges: &[LooseEdge], coplanar: f64) -> S
         normal: edges[bridge.other].normal,
         axis: bridge.axis,
     }
+}
+
+/// Whether every point lies within `tolerance` of the plane (a point on it, its unit normal).
+pub fn in_plane(points: &[DVec3], [origin, normal]: [DVec3; 2], tolerance: f64) -> bool {
+    points.iter().all(|&q| (q - origin).dot(normal).abs() <= tolerance)
 }
 
 /// A step bridge between two edges that are one curve at two levels: the `owner` edge swept by `along` onto

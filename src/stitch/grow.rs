@@ -368,8 +368,8 @@ fn step_quads(
 /// The plane of `face` (its point and normal) when the samples of an edge of it lie in that plane within
 /// `tolerance`: the face is flat up to the edge (a curved face's tangent plane at its middle leaves its edges).
 fn flat_up_to(face: &FusedFace, samples: &[DVec3], tolerance: f64) -> Option<[DVec3; 2]> {
-    let normal = face.normal.try_normalize()?;
-    samples.iter().all(|&q| (q - face.point).dot(normal).abs() <= tolerance).then_some([face.point, normal])
+    let plane = [face.point, face.normal.try_normalize()?];
+    bridge::in_plane(samples, plane, tolerance).then_some(plane)
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom

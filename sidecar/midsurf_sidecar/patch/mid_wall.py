@@ -106,22 +106,23 @@ def _mean_cylinder(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Fac
         return None
     radius = 0.5 * (cylinder.Radius() + others[0].Radius())
     mean = Geom_CylindricalSurface(cylinder.Position().Translated(across[0] * 0.5), radius)
-    span = _mean_span(face, partners, cylinder)
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    span = _mean_span(face, (v0, v1), partners, cylinder, box=cylinder.Radius() * (u1 - u0) * (v1 - v0))
     if span is not None:
-        u0, u1, _, _ = BRepTools.UVBounds_s(face)
         maker = BRepBuilderAPI_MakeFace(mean, u0, u1, *span, CONFUSION)
         if maker.IsDone() and BRepCheck_Analyzer(maker.Face()).IsValid():
             return TopoDS.Face(maker.Face().Oriented(face.Orientation()))
     return _sound_on(mean, face)
 
 
-def _mean_span(face: TopoDS_Face, partners: list[TopoDS_Face], cylinder) -> tuple[float, float] | None:
-    """The axial range (the cylinder's v) half-way between the face's and its partners': a bend between two
-    others (a tub's bottom edge between its corners) ends where they begin, and on axes apart the skins' ends
+def _mean_span(
+    face: TopoDS_Face, span: tuple[float, float], partners: list[TopoDS_Face], cylinder, box: float
+) -> tuple[float, float] | None:
+    """The axial range (the cylinder's v) half-way between the face's (`span`) and its partners': a bend between
+    two others (a tub's bottom edge between its corners) ends where they begin, and on axes apart the skins' ends
     lie apart along the axis too, by the other bends' offsets. None unless the face is the whole (u, v) box of
-    its range (four iso-lines), whose range alone can be moved."""
-    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
-    box = cylinder.Radius() * (u1 - u0) * (v1 - v0)
+    its range (four iso-lines; `box`: that box's area), whose range alone can be moved."""
+    v0, v1 = span
     if abs(surface_props(face).Mass() - box) > RECTANGLE_SHARE * box:
         return None
     origin, direction = cylinder.Location(), gp_Vec(cylinder.Axis().Direction())
