@@ -1119,6 +1119,23 @@ def tub_thin_corners() -> Fixture:
     return Fixture(part, part.volume, 35)
 
 
+def tray_rim_rebate() -> Fixture:
+    """An open tray 80 x 60 x 30, walls and floor 2, its vertical corners rounded R 6 outside and R 4 inside, with
+    a rebate along the rim inside: the top 1.2 of every wall is 1.4 thick (the corners' inner arcs R 4.6, on the
+    same axes). The class: a narrow level of a wall (a rebate, a groove, a bead: narrower than it is thick)
+    running round a box's rounded corners; it is a minor level of the wall on the flats and on the corners
+    alike, so the wall's patch runs on past it all round. Mid-surface: the walls' planes 1 in, joined round each
+    corner by the cylinder R 5, up to the rim; 9 faces (4 walls, 4 corners, the floor).
+    Faces: 28 (4 outside and 4 inside walls and corners each, floor outside and inside, 4 band walls and 4 band
+    corners, the rebate's ledge, the rim).
+    Volume: the built solid's.
+    """
+    inner = rounded_box(76, 56, 30, 4.0, (2, 2, 2))
+    rebate = rounded_box(77.2, 57.2, 1.2, 4.6, (1.4, 1.4, 28.8))
+    part = single_solid(rounded_box(80, 60, 30, 6.0, (0, 0, 0)) - inner - rebate)
+    return Fixture(part, part.volume, 28)
+
+
 def chamfered_box(dx: float, dy: float, dz: float, leg: float, origin: tuple[float, float, float]) -> Solid:
     """A box from `origin`, its four vertical edges chamfered 45 degrees with legs `leg`."""
     part = box(*origin, dx, dy, dz)
@@ -1234,6 +1251,7 @@ PARTS: list[Callable[[], Fixture]] = [
     tray_thin_corners,
     tray_bevelled_corners,
     tub_thin_corners,
+    tray_rim_rebate,
     bend_off_centre,
 ]
 

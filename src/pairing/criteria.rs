@@ -287,7 +287,8 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
     (joined_by_skin || sliver).then_some(Rejection::Stub { width, thickness: pair.thickness.mean, top: false })
 }
 
-/// A planar face narrower than its distance to its partner cannot be a shell of its own. When that partner
+/// A planar or cylindrical face narrower than its distance to its partner cannot be a shell of its own (a level
+/// running round a box's rounded corner is the corner's as on the flats beside it). When that partner
 /// pairs with another face wide enough to be a wall (at least as wide as that pair is thick) at a different
 /// thickness, the narrow face is a minor level of the wall (a groove's floor, a rebate or a bead along it): the
 /// wall's patch runs on past it. `pairs_of[f]`: the pairs of face f. Returns the narrow face and the rejection.
@@ -300,7 +301,8 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
 pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same: f64) -> Option<(FaceId, Rejection)> {
     let t = pair.thickness.mean;
     pair.faces.iter().find_map(|&face| {
-        if !graph.faces[face].surface.is_plane() {
+        let plane = graph.faces[face].surface.is_plane();
+        if !plane && !matches!(graph.faces[face].surface, Surface::Cylinder { .. }) {
             return None;
         }
         let width = graph.face_width(face);
@@ -316,7 +318,7 @@ pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same
             Some(wall) => Some((face, Rejection::MinorLevel { width, thickness: t, wall: wall.thickness.mean })),
             None => {
                 let isolated = pairs_of[face].len() == 1 && pairs_of[partner].len() == 1;
-                let lip = isolated && graph.face_width(partner) >= t && ledge(graph, face, pairs_of);
+                let lip = plane && isolated && graph.face_width(partner) >= t && ledge(graph, face, pairs_of);
                 lip.then_some((face, Rejection::Lip { width, thickness: t }))
             }
         }

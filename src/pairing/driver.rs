@@ -9,7 +9,7 @@ use crate::model::warning::Warning;
 use crate::pairing::estimate::{estimate_t_max, TMaxEstimate};
 use crate::pairing::features::{self, Feature, LimitArgs, Limits};
 use crate::pairing::wall_class::{classify, WallClass};
-use crate::pairing::{self, FaceRole, Pairing};
+use crate::pairing::{self, FaceRole, NearMiss, Pairing, Rejection};
 
 /// What the user asked for; None means "estimate from the part".
 #[derive(Debug, Clone, Copy)]
@@ -97,7 +97,12 @@ impl SolidPairing {
         // A face the kernel could not describe is said once, with the kernel's reason, not as unpaired.
         let mut out = undescribed_face_warnings(solid, graph);
         for (f, role) in self.pairing.roles.iter().enumerate() {
-            if let Some(why) = role.unpaired_reason().filter(|_| graph.faces[f].problem.is_none()) {
+            // A minor level is no missing wall: its wall's patch runs on past it (`criteria::minor_level`).
+            let minor = matches!(
+                role,
+                FaceRole::Unpaired { near_miss: Some(NearMiss { rejection: Rejection::MinorLevel { .. }, .. }) }
+            );
+            if let Some(why) = role.unpaired_reason().filter(|_| graph.faces[f].problem.is_none() && !minor) {
                 out.push(Warning {
                     code: "unpaired_face",
                     message: format!(

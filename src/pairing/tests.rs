@@ -674,6 +674,43 @@ fn a_groove_narrower_than_the_wall_is_a_minor_level_of_it() {
 }
 
 #[test]
+fn a_band_round_a_rounded_corner_narrower_than_thick_is_a_minor_level_as_on_the_flats() {
+    // A box's rounded corner (a quarter turn about z): outside R 6 up to 30 (0), inside R 4 up to 28.8 (1, a
+    // wall 2.0 thick), and above it a rebate's band R 4.6, 1.2 tall (2): 1.4 from the outside and narrower
+    // than that. Like a planar band on the flats beside it, it is a minor level of the corner's wall; 2.0 tall,
+    // it is a level of its own.
+    let quarter = (0.0, std::f64::consts::FRAC_PI_2);
+    for (tall, band_pairs) in [(1.2, false), (2.0, true)] {
+        let faces = vec![
+            cylinder(DVec3::ZERO, 6.0, quarter, 30.0, true),
+            cylinder(DVec3::ZERO, 4.0, quarter, 30.0 - tall, false),
+            cylinder(DVec3::Z * (30.0 - tall), 4.6, quarter, tall, false),
+        ];
+        let arc = 4.6 * std::f64::consts::FRAC_PI_2;
+        // The band's outline: two arcs and two short ends.
+        let edges = [
+            (1, 2, Convexity::Concave, arc),
+            (1, 2, Convexity::Convex, arc),
+            (1, 2, Convexity::Convex, tall),
+            (1, 2, Convexity::Convex, tall),
+        ];
+        let pairing = detect(&graph_with_lengths(faces, &edges), &tol(), &[true; 3]);
+        let paired: Vec<[usize; 2]> = pairing.pairs.iter().map(|p| p.faces).collect();
+        let expected = if band_pairs { vec![[0, 1], [0, 2]] } else { vec![[0, 1]] };
+        assert_eq!(paired, expected, "band {tall} tall");
+        if !band_pairs {
+            let minor = |r: &FaceRole| match r {
+                FaceRole::Unpaired { near_miss: Some(m) } | FaceRole::Connecting { near_miss: Some(m), .. } => {
+                    matches!(m.rejection, Rejection::MinorLevel { .. })
+                }
+                _ => false,
+            };
+            assert!(minor(&pairing.roles[2]), "{:?}", pairing.roles[2]);
+        }
+    }
+}
+
+#[test]
 fn a_lip_along_a_plate_edge_is_a_stub_whichever_face_is_proud() {
     // A plate's end face (0: z=0, facing -z, 1.7 wide) runs on under a lip whose top (1: z=1.9, facing +z,
     // 0.95 wide) meets the plate's skin along a concave edge. The end face is the proud one: convex long sides,
