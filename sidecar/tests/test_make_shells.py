@@ -307,6 +307,23 @@ def test_a_merge_set_going_all_the_way_round_a_tube_stays_as_its_pieces(client):
     assert faces_per_edge(shells) == [1, 1, 1, 1, 2, 2]
 
 
+def test_a_tube_in_bands_merges_its_bands_along_the_axis_but_never_all_the_way_round(client):
+    # Two half tubes, each in two bands (a joint's strip below, the tube above, as a boss's wall grown down into
+    # a floor): all four merged would close on themselves again; merged across the edges round the tube only,
+    # each half is one face again, both sides along the axis shared between the halves.
+    pieces = [BRepBuilderAPI_MakeFace(gp_Cylinder(gp_Ax3(), 10.0), a, a + math.pi, v0, v1).Face()
+              for a in (0.0, math.pi) for v0, v1 in ((0.0, 1.5), (1.5, 20.0))]
+    f = fused(client, *pieces)
+    assert len(f["faces"]) == 4
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[[0, 1, 2, 3]], merge=[[0, 1, 2, 3]])
+    shells_made = client.session.store.get(ok["handle"])
+    assert ok["valid"] is True and len(ok["faces"]) == 2
+    assert sorted(round(a, 6) for a in face_areas(shells_made)) == [round(10.0 * math.pi * 20.0, 6)] * 2
+    # Free edges only at the two rims (a half circle per half and rim); both sides along the axis are shared
+    # (each still in its two pieces: edges kept are not joined).
+    assert faces_per_edge(shells_made) == [1, 1, 1, 1, 2, 2, 2, 2]
+
+
 class RecordingMerger:
     """Stands in for ShapeUpgrade_UnifySameDomain: records the shape it is given, then fails to build."""
 

@@ -89,15 +89,18 @@ def _edge_uses(compound: TopoDS_Compound) -> dict[str, int]:
     return {"free_edges": free, "nonmanifold_edges": nonmanifold}
 
 
-def _merge(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy: float) -> None:
+def _merge(
+    pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy: float, around: list[list[int]] | None = None
+) -> None:
     """The faces of each of `groups` (one patch's, joined only to each other) made one face where they lie on
     one surface; the group's first face id stands for the merged face, the others for none. All the faces are
     unified at once, every edge but those inside a group kept (ShapeUpgrade_UnifySameDomain, faces only), so
     a face whose edge is rebuilt is rebuilt with it and the shells' sharing holds (merging a group on its own
     left its neighbours on edges the merged face no longer had: gaps once written). Groups holding a face split
-    at its seam are left out (merging would close the face on itself again), and so are groups whose merged
-    face comes out closed on itself; nothing changes when the unification fails or gives faces that cannot be
-    traced back."""
+    at its seam are left out (merging would close the face on itself again); nothing changes when the
+    unification fails or gives faces that cannot be traced back. The groups of `around` merge only across the edges that do not run along the way round their
+    surface (`_keep_along_turn`): a tube's pieces merge with its bands (a joint's strip down into a floor) into
+    one face per sector, not left as slivers of their own."""
     groups = [g for g in groups if all(len(pieces[i]) == 1 for i in g)]
     if not groups:
         return
@@ -118,6 +121,8 @@ def _merge(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy
             pieces[i].append(copies.Value())
             copies.Next()
     inner = _group_edges(pieces, groups)
+    if around:
+        _keep_along_turn(inner, pieces, [g for g in groups if g in around])
     for faces in pieces.values():
         for face in faces:
             explorer = TopExp_Explorer(face, TopAbs_EDGE)
@@ -135,32 +140,81 @@ def _merge(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy
         return
     history = merger.History()
     owner = {i: g[0] for g in groups for i in g}
-    merged: dict[int, list[TopoDS_Shape]] = {i: [] for i in pieces}
-    taken = ShapeMap()
+    images = {}
     for i, faces in pieces.items():
         for face in faces:
-            images = list(history.Modified(face)) if history.IsRemoved(face) or history.Modified(face).Size() else [face]
-            for image in images:
-                if taken.Add(image):
-                    merged[owner.get(i, i)].append(image)
+            modified = history.IsRemoved(face) or history.Modified(face).Size()
+            images[i] = images.get(i, []) + (list(history.Modified(face)) if modified else [face])
+    # A piece of a group of `around` that merged with none of its group keeps its own id.
+    sources = IndexedShapeMap()
+    count: dict[int, int] = {}
+    for found in images.values():
+        for image in found:
+            k = sources.Add(image)
+            count[k] = count.get(k, 0) + 1
+    alone = {i for g in (around or []) if g in groups for i in g if all(count[sources.FindIndex(f)] == 1 for f in images[i])}
+    merged: dict[int, list[TopoDS_Shape]] = {i: [] for i in pieces}
+    taken = ShapeMap()
+    for i, found in images.items():
+        for image in found:
+            if taken.Add(image):
+                merged[i if i in alone else owner.get(i, i)].append(image)
     result = indexed_map(merger.Shape(), TopAbs_FACE)
     if taken.Size() != result.Size() or any(not result.Contains(f) for faces in merged.values() for f in faces):
         return
-    # A merged face the kernel finds invalid (its wires rebuilt badly) is worse than the pieces it replaces.
+    # A merged face the kernel finds invalid (its wires rebuilt badly) is worse than the pieces it replaces, and
+    # pieces that together go all the way round (a tube's pieces joined along both sides) merge into a face closed
+    # on itself again, its seam a free edge. Such groups are merged again across the edges that do not run along
+    # the way round (`around`), and when that fails too they stay as pieces; the other groups merge.
     originals = ShapeMap()
     for faces in pieces.values():
         for face in faces:
             originals.Add(face)
-    made = [f for faces in merged.values() for f in faces if not originals.Contains(f)]
-    if not all(BRepCheck_Analyzer(f).IsValid() for f in made):
-        return
-    # Pieces that together go all the way round (a tube's pieces joined along both sides) merge into a face
-    # closed on itself again, its seam a free edge: those groups stay as pieces, the others merge.
-    closing = [g for g in groups if closing_isolines([f for f in merged[g[0]] if not originals.Contains(f)])]
-    if closing:
-        _merge(given, [g for g in groups if g not in closing], fuzzy)
-        return
-    given.update(merged)
+
+    def failed(group: list[int]) -> bool:
+        made = _made(merged[group[0]], originals)
+        return not all(BRepCheck_Analyzer(f).IsValid() for f in made) or bool(closing_isolines(made))
+
+    failing = [g for g in groups if failed(g)]
+    if failing and around is None:
+        _merge(given, groups, fuzzy, failing)
+    elif failing:
+        _merge(given, [g for g in groups if g not in failing], fuzzy, [])
+    else:
+        given.update(merged)
+
+
+def _made(faces: list[TopoDS_Shape], originals: ShapeMap) -> list[TopoDS_Shape]:
+    """The faces a merge made (not among the pieces it was given)."""
+    return [f for f in faces if not originals.Contains(f)]
+
+
+def _keep_along_turn(inner: ShapeMap, pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]]) -> None:
+    """Takes out of `inner` (the edges a merge may remove) the edges between faces of `groups` that are isolines
+    along which their surface closes (a tube's edges along its axis): kept, they stop the merged faces going all
+    the way round."""
+    for g in groups:
+        for i in g:
+            for shape in pieces[i]:
+                face = TopoDS.Face(shape)
+                surface = BRep_Tool.Surface_s(face)
+                u_closed = surface.IsUPeriodic() or surface.IsUClosed()
+                v_closed = surface.IsVPeriodic() or surface.IsVClosed()
+                for edge in subshapes(face, TopAbs_EDGE):
+                    if inner.Contains(edge) and _isoline(TopoDS.Edge(edge), face, u_closed, v_closed):
+                        inner.Remove(edge)
+
+
+def _isoline(edge: TopoDS_Edge, face: TopoDS_Face, u: bool, v: bool) -> bool:
+    """Whether `edge` runs in `face` at constant u (when `u`) or constant v (when `v`): its ends and middle."""
+    curve = BRepAdaptor_Curve2d(edge, face)
+    a, b = curve.FirstParameter(), curve.LastParameter()
+    points = [curve.Value(t) for t in (a, 0.5 * (a + b), b)]
+    return (u and _constant([p.X() for p in points])) or (v and _constant([p.Y() for p in points]))
+
+
+def _constant(values: list[float]) -> bool:
+    return max(values) - min(values) <= CONFUSION
 
 
 def _group_edges(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]]) -> ShapeMap:
