@@ -154,6 +154,8 @@ fn run_once(args: &RunArgs, attempt: Attempt, stage: &mut Stage) -> Result<Exit,
     warnings.extend(left_out);
     shells::checked(&mut assembled, &written, &stitched.fused);
     warnings.extend(assembled.warning.clone());
+    let thinnest = made.iter().map(|m| m.plan.thickness.mean).fold(f64::INFINITY, f64::min);
+    warnings.extend(shells::loose_edges_warning(assembled.max_edge_tolerance, thinnest));
     timings.write = since(t);
 
     let t = Instant::now();

@@ -223,6 +223,7 @@ def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
             else:
                 os.remove(trial)
     written["valid"], written["invalid"] = checked.valid, checked.invalid
+    written["max_edge_tolerance"] = checked.max_edge_tolerance
     return written
 
 

@@ -75,6 +75,26 @@ def test_a_face_without_a_wire_is_named_broken(tmp_path):
     assert readback.check_written(str(tmp_path / "box.step"), bounded).valid
 
 
+def test_the_check_reports_how_far_edges_read_back_lie_off_their_faces(tmp_path):
+    # A face on the plane z = 0 whose wire has a corner 0.2 above it: its edges stray up to 0.2 from the face,
+    # which the reader's tolerances keep; a box's edges lie on their faces.
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
+    from OCP.gp import gp_Pln, gp_Pnt
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+
+    def written(shape, name):
+        path = str(tmp_path / name)
+        writer = STEPControl_Writer()
+        writer.Transfer(shape, STEPControl_AsIs)
+        writer.Write(path)
+        return readback.check_written(path, shape)
+
+    polygon = BRepBuilderAPI_MakePolygon(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0), gp_Pnt(10, 10, 0.2), gp_Pnt(0, 10, 0), True)
+    loose = BRepBuilderAPI_MakeFace(gp_Pln(), polygon.Wire()).Face()
+    assert 0.1 < written(shells_of([[loose]]), "loose.step").max_edge_tolerance < 0.3
+    assert written(shells_of([box_faces()]), "box.step").max_edge_tolerance < 1e-5
+
+
 def test_an_empty_face_written_is_named_broken_not_a_crash(tmp_path):
     # A face with neither surface nor wire has a void bounding box, whose corners OCCT refuses to give: the
     # check names the face instead of failing the write.

@@ -303,6 +303,9 @@ pub struct Written {
     pub valid: Option<bool>,
     #[serde(default)]
     pub invalid: Vec<usize>,
+    /// With `check`: the largest edge tolerance of the file read back.
+    #[serde(default)]
+    pub max_edge_tolerance: Option<f64>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]

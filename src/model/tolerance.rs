@@ -97,6 +97,11 @@ pub fn on_rim(thickness: f64, mesh_tolerance: f64) -> f64 {
     (RIM_SHARE * thickness).max(2.0 * mesh_tolerance)
 }
 
+/// An edge of the file written may lie off its faces by at most this share of the thinnest patch's thickness
+/// (its tolerance once read back) before the report warns (`loose_edges`): a mesher's nodes along it stray as
+/// far from the mid-surface.
+pub const LOOSE_EDGE_SHARE: f64 = 0.05;
+
 /// The share of a wall's thickness within which a free edge is on the rim (`on_rim`); a thickness step no
 /// higher than this share of the thinner wall is not laid down into a ramp (`stitch::bridge::step_bridges`).
 pub const RIM_SHARE: f64 = 0.1;

@@ -50,7 +50,7 @@ pub fn report(
     timings: Option<Timings>,
 ) -> Report {
     let Outcome { fused, keep, branches, joints, free, .. } = stitched;
-    let Assembled { shells, .. } = assembled;
+    let Assembled { shells, max_edge_tolerance, .. } = assembled;
     let patches = patch_reports(made, &fused, &keep, asked.t_band);
     if made.is_empty() {
         warnings.push(Warning {
@@ -95,6 +95,7 @@ pub fn report(
             shells: shells.count,
             valid: shells.valid,
             area: written_area(&fused, &keep),
+            max_edge_tolerance,
             free_edges: free,
         },
         topology,

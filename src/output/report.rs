@@ -191,6 +191,8 @@ pub struct ResultSummary {
     pub shells: usize,
     pub valid: bool,
     pub area: f64,
+    /// The largest edge tolerance of the file read back: how far an edge may lie off its faces.
+    pub max_edge_tolerance: f64,
     /// Free edges of the result: on the part's rim, or open (inside the material: an unmade joint).
     /// Absent when stitching failed.
     pub free_edges: Option<FreeEdges>,

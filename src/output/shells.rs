@@ -12,6 +12,7 @@ use crate::kernel::protocol::{FaceAttributes, KeptSolid, Request, Written};
 use crate::kernel::{Kernel, SidecarError};
 use crate::load::Part;
 use crate::model::shapes::{Fused, Shells};
+use crate::model::tolerance::LOOSE_EDGE_SHARE;
 use crate::model::warning::{patch_list, Warning};
 use crate::pairing::driver::SolidPairing;
 use crate::patch::make::Made;
@@ -22,6 +23,8 @@ use crate::trim::{connected_sets, merge_sets};
 pub struct Assembled {
     pub shells: Shells,
     pub warning: Option<Warning>,
+    /// The largest edge tolerance of the file read back (0 until written and checked).
+    pub max_edge_tolerance: f64,
 }
 
 pub fn make_shells<K: Kernel>(kernel: &mut K, stitched: &Outcome, fuzzy: f64) -> Result<Assembled, SidecarError> {
@@ -39,7 +42,7 @@ fn make_shells_apart<K: Kernel>(
     let merge = canonical(&stitched.fused, merged(stitched, apart), fuzzy);
     let shells = kernel.make_shells(stitched.fused.handle, sets, merge, fuzzy)?;
     let warning = invalid_output_warning(&shells, &stitched.fused);
-    Ok(Assembled { shells, warning })
+    Ok(Assembled { shells, warning, max_edge_tolerance: 0.0 })
 }
 
 /// `sets` of pieces in an order the geometry alone decides: each set's pieces by patch, then by centroid and
@@ -211,6 +214,23 @@ pub fn checked(assembled: &mut Assembled, written: &Written, fused: &Fused) {
         assembled.shells.invalid = written.invalid.clone();
         assembled.warning = invalid_output_warning(&assembled.shells, fused);
     }
+    assembled.max_edge_tolerance = written.max_edge_tolerance.unwrap_or(0.0);
+}
+
+/// Edges of the file lying off their faces by more than `LOOSE_EDGE_SHARE` of the thinnest patch's thickness
+/// (`thinnest`): the file is valid, but a mesh following those edges strays from the mid-surface as far.
+pub fn loose_edges_warning(max_edge_tolerance: f64, thinnest: f64) -> Option<Warning> {
+    (max_edge_tolerance > LOOSE_EDGE_SHARE * thinnest).then(|| Warning {
+        code: "loose_edges",
+        message: format!(
+            "edges of the mid-surface lie up to {max_edge_tolerance:.3} mm off their faces (their tolerance once \
+             read back), over {:.0}% of the thinnest patch's thickness {thinnest:.3}: a mesh along them strays as \
+             far from the mid-surface",
+            100.0 * LOOSE_EDGE_SHARE
+        ),
+        solid: None,
+        faces: Vec::new(),
+    })
 }
 
 /// Faces failing the kernel's check are written as they are (readers usually repair them), but a script must
@@ -244,6 +264,17 @@ mod tests {
     use crate::kernel::fake::FakeKernel;
     use crate::model::shapes::{FusedEdge, FusedFace};
     use glam::DVec3;
+
+    #[test]
+    fn edges_read_back_off_their_faces_by_a_twentieth_of_the_thinnest_wall_are_warned_of() {
+        // A 0.28 tolerance on walls 1.2 and ribs 0.8 thick (a drafted housing's corner seams): warned; a
+        // B-spline fit's 0.002 is not.
+        let warning = loose_edges_warning(0.28, 0.8).expect("0.28 > 0.05 x 0.8");
+        assert_eq!(warning.code, "loose_edges");
+        assert!(warning.message.contains("0.280 mm"), "{}", warning.message);
+        assert!(loose_edges_warning(0.002, 0.8).is_none());
+        assert!(loose_edges_warning(0.039, 0.8).is_none() && loose_edges_warning(0.041, 0.8).is_some());
+    }
 
     /// Fused pieces of the given (patch, area).
     fn fused(faces: &[(usize, f64)]) -> Fused {
@@ -291,7 +322,7 @@ mod tests {
     fn written(shells: &Shells, broken: &[usize], unnamed: bool) -> Written {
         let invalid: Vec<usize> = (0..shells.faces.len()).filter(|&j| broken.contains(&shells.faces[j])).collect();
         let valid = invalid.is_empty() && !unnamed;
-        Written { path: String::new(), bytes: 0, valid: Some(valid), invalid }
+        Written { path: String::new(), bytes: 0, valid: Some(valid), invalid, max_edge_tolerance: None }
     }
 
     /// `write_checked` on `stitched`, first written as one face per piece, the kernel answering make_shells with
@@ -313,7 +344,7 @@ mod tests {
         read: impl Fn(&Outcome, &Shells) -> Written,
     ) -> (Assembled, Written, Option<Warning>, FakeKernel) {
         let mut kernel = FakeKernel::new(replies);
-        let first = Assembled { shells: shells(faces, true, vec![]), warning: None };
+        let first = Assembled { shells: shells(faces, true, vec![]), warning: None, max_edge_tolerance: 0.0 };
         let write = |_: &mut FakeKernel, s: &Outcome, sh: &Shells| Ok(read(s, sh));
         let (assembled, written, warning) =
             write_checked(&mut kernel, stitched, first, 0.0, Path::new("in.step"), write).unwrap();

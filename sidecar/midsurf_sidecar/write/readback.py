@@ -16,8 +16,9 @@ from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.gp import gp_Pnt
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.STEPControl import STEPControl_Reader
-from OCP.TopAbs import TopAbs_FACE, TopAbs_SHELL
-from OCP.TopoDS import TopoDS_Shape
+from OCP.BRep import BRep_Tool
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL
+from OCP.TopoDS import TopoDS, TopoDS_Shape
 
 from ..constants import READBACK_MATCH, UNBOUNDED_BOX
 from ..geom.topology import bounded, curve_edges, distance_to, indexed_map, subshapes
@@ -34,6 +35,9 @@ class Check:
     # how many of those could not be named.
     dropped: int = 0
     unnamed: int = 0
+    # The largest edge tolerance read back: how far an edge may lie off its faces (a reader widens the tolerance
+    # of an edge whose curve strays from them; a mesher's boundary nodes stray as far).
+    max_edge_tolerance: float = 0.0
 
 
 def check_written(path: str, shape: TopoDS_Shape) -> Check:
@@ -46,11 +50,12 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
         return Check(False, [])
     reader.TransferRoots()
     back = reader.OneShape()
+    loose = max((BRep_Tool.Tolerance_s(TopoDS.Edge(e)) for e in subshapes(back, TopAbs_EDGE)), default=0.0)
     own = indexed_map(shape, TopAbs_FACE)
     unbounded = {j for j in range(own.Size()) if not bounded(own.FindKey(j + 1))}
     back_faces = subshapes(back, TopAbs_FACE)
     if not unbounded and all(map(bounded, back_faces)) and BRepCheck_Analyzer(back).IsValid():
-        return Check(True, [])
+        return Check(True, [], max_edge_tolerance=loose)
     bad = [k for k, face in enumerate(back_faces) if not bounded(face) or not BRepCheck_Analyzer(face).IsValid()]
     read_empty = _lost_faces(back, shape, own)
     dropped = max(len(read_empty), own.Size() - len(back_faces), 0)
@@ -76,7 +81,7 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
             origin = k
         if origin is not None:
             invalid.add(origin)
-    return Check(False, sorted(invalid), dropped, unnamed)
+    return Check(False, sorted(invalid), dropped, unnamed, loose)
 
 
 def _lost_faces(back: TopoDS_Shape, shape: TopoDS_Shape, own) -> set[int]:
