@@ -98,9 +98,9 @@ def _merge(
     a face whose edge is rebuilt is rebuilt with it and the shells' sharing holds (merging a group on its own
     left its neighbours on edges the merged face no longer had: gaps once written). Groups holding a face split
     at its seam are left out (merging would close the face on itself again); nothing changes when the
-    unification fails or gives faces that cannot be traced back. The groups of `around` merge only across the edges that do not run along the way round their
-    surface (`_keep_along_turn`): a tube's pieces merge with its bands (a joint's strip down into a floor) into
-    one face per sector, not left as slivers of their own."""
+    unification fails or gives faces that cannot be traced back. The groups of `around` merge only across the
+    edges that do not run along the way round their surface (`_keep_along_turn`): a tube's pieces merge with its
+    bands (a joint's strip down into a floor) into one face per sector, not left as slivers of their own."""
     groups = [g for g in groups if all(len(pieces[i]) == 1 for i in g)]
     if not groups:
         return
@@ -152,7 +152,9 @@ def _merge(
         for image in found:
             k = sources.Add(image)
             count[k] = count.get(k, 0) + 1
-    alone = {i for g in (around or []) if g in groups for i in g if all(count[sources.FindIndex(f)] == 1 for f in images[i])}
+    alone = {
+        i for g in (around or []) if g in groups for i in g if all(count[sources.FindIndex(f)] == 1 for f in images[i])
+    }
     merged: dict[int, list[TopoDS_Shape]] = {i: [] for i in pieces}
     taken = ShapeMap()
     for i, found in images.items():
