@@ -79,6 +79,11 @@ impl Surface {
         matches!(self, Surface::Plane { .. })
     }
 
+    /// A plane or a cylinder: a face that can be a band of a wall, flat or running round a corner.
+    pub fn is_flat_or_round(&self) -> bool {
+        matches!(self, Surface::Plane { .. } | Surface::Cylinder { .. })
+    }
+
     /// Freeform surfaces carry no analytic parameters: pairing them needs the mesh.
     pub fn is_freeform(&self) -> bool {
         !matches!(

@@ -276,8 +276,7 @@ const SLIVER: f64 = 0.25;
 /// thickness faces (a short tab's edge faces) stay a wall, unless both are slivers (`SLIVER`).
 pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Rejection> {
     let width = pair.faces.iter().map(|&f| graph.face_width(f)).fold(0.0, f64::max);
-    let flat_or_round =
-        pair.faces.iter().all(|&f| matches!(graph.faces[f].surface, Surface::Plane { .. } | Surface::Cylinder { .. }));
+    let flat_or_round = pair.faces.iter().all(|&f| graph.faces[f].surface.is_flat_or_round());
     if !flat_or_round || width >= pair.thickness.mean {
         return None;
     }
@@ -301,10 +300,10 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
 pub fn minor_level(graph: &FaceGraph, pair: &Pair, pairs_of: &[Vec<&Pair>], same: f64) -> Option<(FaceId, Rejection)> {
     let t = pair.thickness.mean;
     pair.faces.iter().find_map(|&face| {
-        let plane = graph.faces[face].surface.is_plane();
-        if !plane && !matches!(graph.faces[face].surface, Surface::Cylinder { .. }) {
+        if !graph.faces[face].surface.is_flat_or_round() {
             return None;
         }
+        let plane = graph.faces[face].surface.is_plane();
         let width = graph.face_width(face);
         if width >= t {
             return None;

@@ -9,20 +9,20 @@ import math
 
 from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRep import BRep_Tool
-from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy, BRepBuilderAPI_MakeFace
-from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.BRepOffsetAPI import BRepOffsetAPI_MakeOffsetShape
 from OCP.BRepTools import BRepTools
 from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_Sphere, GeomAbs_Torus
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopoDS import TopoDS, TopoDS_Face
 
-from ..constants import COLLAPSE_RATIO, CONFUSION, RECTANGLE_SHARE
+from ..constants import COLLAPSE_RATIO
 from ..describe.surface_kind import describe_surface
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import interior_point
 from ..geom.pole_offset import as_bspline
-from ..geom.topology import diagonal, indexed_map, surface_props
+from ..geom.topology import diagonal, indexed_map
+from ..geom.uv_box import face_on_box, fills_its_box
 from ..protocol.errors import OpError, one_line
 
 CURVED_KINDS = (GeomAbs_Cylinder, GeomAbs_Cone, GeomAbs_Sphere, GeomAbs_Torus)
@@ -58,18 +58,9 @@ def _cone_on_its_box(face: TopoDS_Face) -> TopoDS_Face:
     drafted wall running into a drafted rounded corner), that edge came out 0.016 mm off both faces, and 0.28 mm
     after the stitching's fuses. On its box, the face's edges are the cone's exact lines and circles. Any other
     face, or a cone trimmed otherwise (a hole in it, a slanted cut), is returned as it is."""
-    adaptor = BRepAdaptor_Surface(face, False)
-    if adaptor.GetType() != GeomAbs_Cone:
+    if BRepAdaptor_Surface(face, False).GetType() != GeomAbs_Cone or not fills_its_box(face):
         return face
-    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
-    maker = BRepBuilderAPI_MakeFace(BRep_Tool.Surface_s(face), u0, u1, v0, v1, CONFUSION)
-    if not maker.IsDone():
-        return face
-    boxed = maker.Face()
-    area = surface_props(face).Mass()
-    if abs(surface_props(boxed).Mass() - area) > RECTANGLE_SHARE * area or not BRepCheck_Analyzer(boxed).IsValid():
-        return face
-    return TopoDS.Face(boxed.Oriented(face.Orientation()))
+    return face_on_box(BRep_Tool.Surface_s(face), BRepTools.UVBounds_s(face), face) or face
 
 
 def _refuse_collapse(face: TopoDS_Face, distance: float) -> None:

@@ -43,11 +43,11 @@ from ..constants import (
     MID_WALL_SPANS,
     NORMAL_RESOLUTION,
     PARALLEL_AXES,
-    RECTANGLE_SHARE,
 )
 from ..geom.face_normals import OutwardNormals
 from ..geom.face_point import area_samples
-from ..geom.topology import diagonal, subshapes, surface_props
+from ..geom.topology import diagonal, subshapes
+from ..geom.uv_box import face_on_box, fills_its_box
 from .face_offset import offset_face
 
 MOVABLE_KINDS = (GeomAbs_BSplineSurface, GeomAbs_BezierSurface, GeomAbs_Plane)
@@ -107,24 +107,17 @@ def _mean_cylinder(face: TopoDS_Face, partners: list[TopoDS_Face]) -> TopoDS_Fac
     radius = 0.5 * (cylinder.Radius() + others[0].Radius())
     mean = Geom_CylindricalSurface(cylinder.Position().Translated(across[0] * 0.5), radius)
     u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
-    span = _mean_span(face, (v0, v1), partners, cylinder, box=cylinder.Radius() * (u1 - u0) * (v1 - v0))
-    if span is not None:
-        maker = BRepBuilderAPI_MakeFace(mean, u0, u1, *span, CONFUSION)
-        if maker.IsDone() and BRepCheck_Analyzer(maker.Face()).IsValid():
-            return TopoDS.Face(maker.Face().Oriented(face.Orientation()))
-    return _sound_on(mean, face)
+    # Only a face that is its whole (u, v) box (four iso-lines) has a range that alone can be moved.
+    span = _mean_span((v0, v1), partners, cylinder) if fills_its_box(face) else None
+    moved = face_on_box(mean, (u0, u1, *span), face) if span is not None else None
+    return moved or _sound_on(mean, face)
 
 
-def _mean_span(
-    face: TopoDS_Face, span: tuple[float, float], partners: list[TopoDS_Face], cylinder, box: float
-) -> tuple[float, float] | None:
+def _mean_span(span: tuple[float, float], partners: list[TopoDS_Face], cylinder) -> tuple[float, float] | None:
     """The axial range (the cylinder's v) half-way between the face's (`span`) and its partners': a bend between
     two others (a tub's bottom edge between its corners) ends where they begin, and on axes apart the skins' ends
-    lie apart along the axis too, by the other bends' offsets. None unless the face is the whole (u, v) box of
-    its range (four iso-lines; `box`: that box's area), whose range alone can be moved."""
+    lie apart along the axis too, by the other bends' offsets."""
     v0, v1 = span
-    if abs(surface_props(face).Mass() - box) > RECTANGLE_SHARE * box:
-        return None
     origin, direction = cylinder.Location(), gp_Vec(cylinder.Axis().Direction())
     corners = [BRep_Tool.Pnt_s(TopoDS.Vertex(v)) for p in partners for v in subshapes(p, TopAbs_VERTEX)]
     along = [gp_Vec(origin, corner).Dot(direction) for corner in corners]

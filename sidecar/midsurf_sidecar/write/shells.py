@@ -140,11 +140,11 @@ def _merge(
         return
     history = merger.History()
     owner = {i: g[0] for g in groups for i in g}
-    images = {}
+    images: dict[int, list[TopoDS_Shape]] = {i: [] for i in pieces}
     for i, faces in pieces.items():
         for face in faces:
             modified = history.IsRemoved(face) or history.Modified(face).Size()
-            images[i] = images.get(i, []) + (list(history.Modified(face)) if modified else [face])
+            images[i].extend(history.Modified(face) if modified else [face])
     # A piece of a group of `around` that merged with none of its group keeps its own id.
     sources = IndexedShapeMap()
     count: dict[int, int] = {}
