@@ -24,8 +24,8 @@ from io import BytesIO
 from pathlib import Path
 
 from build123d import (
-    Axis, Compound, Edge, Face, Location, Plane, Polyline, RectangleRounded, Shape, Solid, Vector, Wire, export_step,
-    extrude, make_face, thicken,
+    Align, Axis, Box, BuildPart, Compound, Cylinder, Edge, Face, Location, Locations, Mode, Plane, Polyline,
+    RectangleRounded, Shape, Solid, Vector, Wire, export_step, extrude, make_face, thicken,
 )
 from build123d.topology.shape_core import SkipClean
 from OCP.BOPAlgo import BOPAlgo_Builder
@@ -971,6 +971,32 @@ def rib_boss_bore() -> Fixture:
     return Fixture(part, part.volume, 15)
 
 
+def rib_into_boss() -> Fixture:
+    """Plate 100 x 60 x 2 (x -50..50, y -30..30) with a screw boss (outside R 3.5, blind bore R 1.5, z 2..22) on
+    the axis (-30, 0), and a rib 1.8 thick (y -0.9..0.9) from x = -27.5, 1 inside the boss's outside, to 30, z
+    2..30: taller than the boss. The class: a rib running into a screw boss (moulded housings). Mid-surface: plate
+    z = 1, the boss's cylinder R 2.5, the rib's plane y = 0 from the cylinder to its end, joined along the rib's
+    foot and the boss's side. The floor's pieces round the boss's foot must not merge into a face whose hole
+    meets its outer boundary where the rib ends: a reader rebuilds such a face, and its edge along the rib's
+    foot comes apart from the rib's (57 mm of gap in the file). Faces: 15 (the plate's 6, the boss's outside
+    and top, the bore and its floor, the rib's sides, top and free end, and its end above the boss). Volume: the
+    built solid's (the rib's end inside the boss's outside has no short closed form).
+    """
+    # Built in builder mode: the order its faces come in is one the reader broke the merged face in (built by
+    # solid operations, the same part's faces come in an order the reader happened to take whole).
+    bottom = (Align.CENTER, Align.CENTER, Align.MIN)
+    with BuildPart() as built:
+        Box(100, 60, 2, align=bottom)
+        with Locations((-30, 0, 2)):
+            Cylinder(3.5, 20, align=bottom)
+        with Locations((1.25, 0, 2)):
+            Box(57.5, 1.8, 28, align=bottom)
+        with Locations((-30, 0, 2)):
+            Cylinder(1.5, 20, align=bottom, mode=Mode.SUBTRACT)
+    part = single_solid(built.part)
+    return Fixture(part, part.volume, 15)
+
+
 def rib_through_boss() -> Fixture:
     """Plate 100 x 60 x 3 with a screw boss (outside R 5.25, bore R 2.25 through the plate, z 3..31.6) on the axis
     (50, 30), and a rib 2.86 thick (y 27.07..29.93, mid-plane y = 28.5) running through it from x = 20 to 80,
@@ -1242,6 +1268,7 @@ PARTS: list[Callable[[], Fixture]] = [
     t_rib_touching,
     plates_butted,
     rib_boss_bore,
+    rib_into_boss,
     rib_through_boss,
     rib_end_over_boss,
     rib_side_boss,

@@ -19,7 +19,9 @@ from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
-from ..geom.topology import IndexedShapeMap, ancestors, bounds_face, indexed_map, invalid_faces, subshapes
+from ..geom.topology import (
+    IndexedShapeMap, ancestors, bounds_face, face_wires, indexed_map, invalid_faces, subshapes,
+)
 from ..geom.uv_lines import line_within
 from ..protocol.errors import KernelError
 
@@ -166,8 +168,11 @@ def _merge(
         return
     # A merged face the kernel finds invalid (its wires rebuilt badly) is worse than the pieces it replaces, and
     # pieces that together go all the way round (a tube's pieces joined along both sides) merge into a face closed
-    # on itself again, its seam a free edge. Such groups are merged again across the edges that do not run along
-    # the way round (`around`), and when that fails too they stay as pieces; the other groups merge.
+    # on itself again, its seam a free edge. A merged face whose wires touch (a hole meeting the outer boundary at
+    # a vertex: a floor's pieces joined round a boss's foot up to a rib running into it) passes BRepCheck, but a
+    # reader mends it by rebuilding its edges, and the edges it shared with other faces come apart in the file.
+    # Such groups are merged again across the edges that do not run along the way round (`around`), and when that
+    # fails too they stay as pieces; the other groups merge.
     originals = ShapeMap()
     for faces in pieces.values():
         for face in faces:
@@ -175,7 +180,9 @@ def _merge(
 
     def failed(group: list[int]) -> bool:
         made = _made(merged[group[0]], originals)
-        return not all(BRepCheck_Analyzer(f).IsValid() for f in made) or bool(closing_isolines(made))
+        if not all(BRepCheck_Analyzer(f).IsValid() for f in made) or any(map(_wires_touch, made)):
+            return True
+        return bool(closing_isolines(made))
 
     failing = [g for g in groups if failed(g)]
     if failing and around is None:
@@ -184,6 +191,19 @@ def _merge(
         _merge(given, [g for g in groups if g not in failing], fuzzy, [])
     else:
         given.update(merged)
+
+
+def _wires_touch(face: TopoDS_Shape) -> bool:
+    """Whether two wires of `face` share a vertex."""
+    seen = ShapeMap()
+    for wire in face_wires(TopoDS.Face(face)):
+        own = indexed_map(wire, TopAbs_VERTEX)
+        vertices = [own.FindKey(k + 1) for k in range(own.Size())]
+        if any(seen.Contains(v) for v in vertices):
+            return True
+        for v in vertices:
+            seen.Add(v)
+    return False
 
 
 def _made(faces: list[TopoDS_Shape], originals: ShapeMap) -> list[TopoDS_Shape]:
