@@ -156,6 +156,7 @@ fn run_once(args: &RunArgs, attempt: Attempt, stage: &mut Stage) -> Result<Exit,
     warnings.extend(assembled.warning.clone());
     let thinnest = made.iter().map(|m| m.plan.thickness.mean).fold(f64::INFINITY, f64::min);
     warnings.extend(shells::loose_edges_warning(assembled.max_edge_tolerance, thinnest));
+    warnings.extend(shells::unshared_edges_warning(assembled.unshared_edges));
     timings.write = since(t);
 
     let t = Instant::now();

@@ -224,6 +224,7 @@ def write_step(store: HandleStore, args: dict[str, Any]) -> dict[str, Any]:
                 os.remove(trial)
     written["valid"], written["invalid"] = checked.valid, checked.invalid
     written["max_edge_tolerance"] = checked.max_edge_tolerance
+    written["free_edges"] = checked.free_edges
     return written
 
 

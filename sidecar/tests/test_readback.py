@@ -1,6 +1,7 @@
 """The read-back check names the written faces a reader breaks or drops."""
 
 from OCP.BRep import BRep_Builder
+from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Shell
 
@@ -93,6 +94,23 @@ def test_the_check_reports_how_far_edges_read_back_lie_off_their_faces(tmp_path)
     loose = BRepBuilderAPI_MakeFace(gp_Pln(), polygon.Wire()).Face()
     assert 0.1 < written(shells_of([[loose]]), "loose.step").max_edge_tolerance < 0.3
     assert written(shells_of([box_faces()]), "box.step").max_edge_tolerance < 1e-5
+
+
+def test_the_check_counts_the_free_edges_read_back(tmp_path):
+    # A box's six faces in one shell share every edge; in a shell each, every edge is free on each face (24).
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
+
+    def written(shape, name):
+        path = str(tmp_path / name)
+        writer = STEPControl_Writer()
+        writer.Transfer(shape, STEPControl_AsIs)
+        writer.Write(path)
+        return readback.check_written(path, shape)
+
+    faces = box_faces()
+    assert written(shells_of([faces]), "closed.step").free_edges == 0
+    apart = [[BRepBuilderAPI_Copy(face).Shape()] for face in faces]
+    assert written(shells_of(apart), "apart.step").free_edges == 24
 
 
 def test_an_empty_face_written_is_named_broken_not_a_crash(tmp_path):

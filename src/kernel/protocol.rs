@@ -306,6 +306,9 @@ pub struct Written {
     /// With `check`: the largest edge tolerance of the file read back.
     #[serde(default)]
     pub max_edge_tolerance: Option<f64>,
+    /// With `check`: the edges of the file read back used by one face only.
+    #[serde(default)]
+    pub free_edges: Option<usize>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]

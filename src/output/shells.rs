@@ -25,6 +25,9 @@ pub struct Assembled {
     pub warning: Option<Warning>,
     /// The largest edge tolerance of the file read back (0 until written and checked).
     pub max_edge_tolerance: f64,
+    /// How many more free edges the file read back has than the shells written (0 until written and checked):
+    /// edges a reader took apart from the faces they joined.
+    pub unshared_edges: usize,
 }
 
 pub fn make_shells<K: Kernel>(kernel: &mut K, stitched: &Outcome, fuzzy: f64) -> Result<Assembled, SidecarError> {
@@ -42,7 +45,7 @@ fn make_shells_apart<K: Kernel>(
     let merge = canonical(&stitched.fused, merged(stitched, apart), fuzzy);
     let shells = kernel.make_shells(stitched.fused.handle, sets, merge, fuzzy)?;
     let warning = invalid_output_warning(&shells, &stitched.fused);
-    Ok(Assembled { shells, warning, max_edge_tolerance: 0.0 })
+    Ok(Assembled { shells, warning, max_edge_tolerance: 0.0, unshared_edges: 0 })
 }
 
 /// `sets` of pieces in an order the geometry alone decides: each set's pieces by patch, then by centroid and
@@ -215,6 +218,21 @@ pub fn checked(assembled: &mut Assembled, written: &Written, fused: &Fused) {
         assembled.warning = invalid_output_warning(&assembled.shells, fused);
     }
     assembled.max_edge_tolerance = written.max_edge_tolerance.unwrap_or(0.0);
+    assembled.unshared_edges = written.free_edges.map_or(0, |n| n.saturating_sub(assembled.shells.free_edges));
+}
+
+/// Edges shared in the shells written that the file read back has apart: a reader rebuilt the faces on them
+/// (the report's topology, counted on the shells, does not show these gaps).
+pub fn unshared_edges_warning(unshared: usize) -> Option<Warning> {
+    (unshared > 0).then(|| Warning {
+        code: "edges_unshared",
+        message: format!(
+            "{unshared} edge(s) shared by faces of the mid-surface come apart when the file is read back (the \
+             reader rebuilt faces on them): the file has gaps there that the report's topology does not count"
+        ),
+        solid: None,
+        faces: Vec::new(),
+    })
 }
 
 /// Edges of the file lying off their faces by more than `LOOSE_EDGE_SHARE` of the thinnest patch's thickness
@@ -276,6 +294,28 @@ mod tests {
         assert!(loose_edges_warning(0.039, 0.8).is_none() && loose_edges_warning(0.041, 0.8).is_some());
     }
 
+    #[test]
+    fn edges_the_file_reads_back_apart_are_counted_and_warned_of() {
+        // The shells written have 15 free edges; the file read back 16 (a reader rebuilt a face apart from the
+        // rib's foot): one edge unshared, warned. As many as written: nothing.
+        let mut assembled = Assembled {
+            shells: Shells { free_edges: 15, ..shells(vec![0], true, vec![]) },
+            warning: None,
+            max_edge_tolerance: 0.0,
+            unshared_edges: 0,
+        };
+        let fused = fused(&[(0, 1.0)]);
+        let mut read = written(&assembled.shells, &[], false);
+        read.free_edges = Some(16);
+        checked(&mut assembled, &read, &fused);
+        assert_eq!(assembled.unshared_edges, 1);
+        assert_eq!(unshared_edges_warning(assembled.unshared_edges).expect("one edge apart").code, "edges_unshared");
+        read.free_edges = Some(15);
+        checked(&mut assembled, &read, &fused);
+        assert_eq!(assembled.unshared_edges, 0);
+        assert!(unshared_edges_warning(assembled.unshared_edges).is_none());
+    }
+
     /// Fused pieces of the given (patch, area).
     fn fused(faces: &[(usize, f64)]) -> Fused {
         let face = |&(patch, area): &(usize, f64)| FusedFace {
@@ -322,7 +362,14 @@ mod tests {
     fn written(shells: &Shells, broken: &[usize], unnamed: bool) -> Written {
         let invalid: Vec<usize> = (0..shells.faces.len()).filter(|&j| broken.contains(&shells.faces[j])).collect();
         let valid = invalid.is_empty() && !unnamed;
-        Written { path: String::new(), bytes: 0, valid: Some(valid), invalid, max_edge_tolerance: None }
+        Written {
+            path: String::new(),
+            bytes: 0,
+            valid: Some(valid),
+            invalid,
+            max_edge_tolerance: None,
+            free_edges: None,
+        }
     }
 
     /// `write_checked` on `stitched`, first written as one face per piece, the kernel answering make_shells with
@@ -344,7 +391,12 @@ mod tests {
         read: impl Fn(&Outcome, &Shells) -> Written,
     ) -> (Assembled, Written, Option<Warning>, FakeKernel) {
         let mut kernel = FakeKernel::new(replies);
-        let first = Assembled { shells: shells(faces, true, vec![]), warning: None, max_edge_tolerance: 0.0 };
+        let first = Assembled {
+            shells: shells(faces, true, vec![]),
+            warning: None,
+            max_edge_tolerance: 0.0,
+            unshared_edges: 0,
+        };
         let write = |_: &mut FakeKernel, s: &Outcome, sh: &Shells| Ok(read(s, sh));
         let (assembled, written, warning) =
             write_checked(&mut kernel, stitched, first, 0.0, Path::new("in.step"), write).unwrap();

@@ -13,7 +13,7 @@ from OCP.BRepTools import BRepTools
 from OCP.collections import IndexedDataMap_TopoDS_Shape_List_TopoDS_Shape_TopTools_ShapeMapHasher as AncestorMap
 from OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as IndexedShapeMap
 from OCP.GProp import GProp_GProps
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE, TopAbs_ShapeEnum
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_WIRE, TopAbs_ShapeEnum
 from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
 from OCP.gp import gp_Pnt
@@ -58,6 +58,22 @@ def ancestors(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum, owner: TopAbs_ShapeEn
     found = AncestorMap()
     TopExp.MapShapesAndAncestors_s(shape, kind, owner, found)
     return found
+
+
+def edge_uses(shape: TopoDS_Shape) -> tuple[int, int]:
+    """Edges of `shape` used by one face (free) and by three or more (non-manifold), degenerate edges left out
+    and a seam counted once per face."""
+    owners = ancestors(shape, TopAbs_EDGE, TopAbs_FACE)
+    free = nonmanifold = 0
+    for k in range(1, owners.Size() + 1):
+        if BRep_Tool.Degenerated_s(TopoDS.Edge(owners.FindKey(k))):
+            continue
+        faces = IndexedShapeMap()
+        for face in owners.FindFromIndex(k):
+            faces.Add(face)
+        free += faces.Size() == 1
+        nonmanifold += faces.Size() >= 3
+    return free, nonmanifold
 
 
 def volume(shape: TopoDS_Shape) -> float:

@@ -21,7 +21,7 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL
 from OCP.TopoDS import TopoDS, TopoDS_Shape
 
 from ..constants import READBACK_MATCH, UNBOUNDED_BOX
-from ..geom.topology import bounded, curve_edges, distance_to, indexed_map, subshapes
+from ..geom.topology import bounded, curve_edges, distance_to, edge_uses, indexed_map, subshapes
 
 
 @dataclass(frozen=True)
@@ -38,6 +38,9 @@ class Check:
     # The largest edge tolerance read back: how far an edge may lie off its faces (a reader widens the tolerance
     # of an edge whose curve strays from them; a mesher's boundary nodes stray as far).
     max_edge_tolerance: float = 0.0
+    # Edges of the file read back used by one face only (free): more than the shape written has when the reader
+    # rebuilt a face apart from the edges it shared.
+    free_edges: int = 0
 
 
 def check_written(path: str, shape: TopoDS_Shape) -> Check:
@@ -51,11 +54,12 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
     reader.TransferRoots()
     back = reader.OneShape()
     loose = max((BRep_Tool.Tolerance_s(TopoDS.Edge(e)) for e in subshapes(back, TopAbs_EDGE)), default=0.0)
+    free = edge_uses(back)[0]
     own = indexed_map(shape, TopAbs_FACE)
     unbounded = {j for j in range(own.Size()) if not bounded(own.FindKey(j + 1))}
     back_faces = subshapes(back, TopAbs_FACE)
     if not unbounded and all(map(bounded, back_faces)) and BRepCheck_Analyzer(back).IsValid():
-        return Check(True, [], max_edge_tolerance=loose)
+        return Check(True, [], max_edge_tolerance=loose, free_edges=free)
     bad = [k for k, face in enumerate(back_faces) if not bounded(face) or not BRepCheck_Analyzer(face).IsValid()]
     read_empty = _lost_faces(back, shape, own)
     dropped = max(len(read_empty), own.Size() - len(back_faces), 0)
@@ -81,7 +85,7 @@ def check_written(path: str, shape: TopoDS_Shape) -> Check:
             origin = k
         if origin is not None:
             invalid.add(origin)
-    return Check(False, sorted(invalid), dropped, unnamed, loose)
+    return Check(False, sorted(invalid), dropped, unnamed, loose, free)
 
 
 def _lost_faces(back: TopoDS_Shape, shape: TopoDS_Shape, own) -> set[int]:

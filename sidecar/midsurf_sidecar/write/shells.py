@@ -20,7 +20,7 @@ from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
 from ..geom.topology import (
-    IndexedShapeMap, ancestors, bounds_face, face_wires, indexed_map, invalid_faces, subshapes,
+    IndexedShapeMap, bounds_face, edge_uses, face_wires, indexed_map, invalid_faces, subshapes,
 )
 from ..geom.uv_lines import line_within
 from ..protocol.errors import KernelError
@@ -78,16 +78,7 @@ def make_shells(
 def _edge_uses(compound: TopoDS_Compound) -> dict[str, int]:
     """Edges of the shells written used by one face (free) and by three or more (non-manifold), a seam counted
     once per face: the counts a reader of the file finds, after faces closed on themselves were split."""
-    owners = ancestors(compound, TopAbs_EDGE, TopAbs_FACE)
-    free = nonmanifold = 0
-    for k in range(1, owners.Size() + 1):
-        if BRep_Tool.Degenerated_s(TopoDS.Edge(owners.FindKey(k))):
-            continue
-        faces = ShapeMap()
-        for face in owners.FindFromIndex(k):
-            faces.Add(face)
-        free += faces.Size() == 1
-        nonmanifold += faces.Size() >= 3
+    free, nonmanifold = edge_uses(compound)
     return {"free_edges": free, "nonmanifold_edges": nonmanifold}
 
 
