@@ -2,6 +2,7 @@
 
 from OCP.BRep import BRep_Builder
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy
+from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
 from OCP.TopAbs import TopAbs_FACE
 from OCP.TopoDS import TopoDS_Compound, TopoDS_Shell
 
@@ -22,6 +23,14 @@ def shells_of(groups):
             builder.Add(shell, face)
         builder.Add(compound, shell)
     return compound
+
+
+def written_and_checked(shape, path):
+    """`shape` written to `path` as STEP (plain writer) and the read-back check of it."""
+    writer = STEPControl_Writer()
+    writer.Transfer(shape, STEPControl_AsIs)
+    writer.Write(str(path))
+    return readback.check_written(str(path), shape)
 
 
 def box_faces():
@@ -81,14 +90,9 @@ def test_the_check_reports_how_far_edges_read_back_lie_off_their_faces(tmp_path)
     # which the reader's tolerances keep; a box's edges lie on their faces.
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakePolygon
     from OCP.gp import gp_Pln, gp_Pnt
-    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
 
     def written(shape, name):
-        path = str(tmp_path / name)
-        writer = STEPControl_Writer()
-        writer.Transfer(shape, STEPControl_AsIs)
-        writer.Write(path)
-        return readback.check_written(path, shape)
+        return written_and_checked(shape, tmp_path / name)
 
     polygon = BRepBuilderAPI_MakePolygon(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0), gp_Pnt(10, 10, 0.2), gp_Pnt(0, 10, 0), True)
     loose = BRepBuilderAPI_MakeFace(gp_Pln(), polygon.Wire()).Face()
@@ -98,19 +102,10 @@ def test_the_check_reports_how_far_edges_read_back_lie_off_their_faces(tmp_path)
 
 def test_the_check_counts_the_free_edges_read_back(tmp_path):
     # A box's six faces in one shell share every edge; in a shell each, every edge is free on each face (24).
-    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Writer
-
-    def written(shape, name):
-        path = str(tmp_path / name)
-        writer = STEPControl_Writer()
-        writer.Transfer(shape, STEPControl_AsIs)
-        writer.Write(path)
-        return readback.check_written(path, shape)
-
     faces = box_faces()
-    assert written(shells_of([faces]), "closed.step").free_edges == 0
+    assert written_and_checked(shells_of([faces]), tmp_path / "closed.step").free_edges == 0
     apart = [[BRepBuilderAPI_Copy(face).Shape()] for face in faces]
-    assert written(shells_of(apart), "apart.step").free_edges == 24
+    assert written_and_checked(shells_of(apart), tmp_path / "apart.step").free_edges == 24
 
 
 def test_an_empty_face_written_is_named_broken_not_a_crash(tmp_path):
