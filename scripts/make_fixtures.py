@@ -997,6 +997,21 @@ def rib_into_boss() -> Fixture:
     return Fixture(part, part.volume, 15)
 
 
+def rib_end_at_boss() -> Fixture:
+    """Plate 100 x 60 x 2 (x -50..50, y -30..30) with a screw boss (outside R 3.5, blind bore R 1.5, z 2..22) on
+    the axis (-30, 0), and a rib 1.8 thick (y -0.9..0.9) from x = -26.57, 0.07 into the boss's outside, to 30, z
+    2..30: it ends at the boss's side and stands 8 above the boss. The class: a rib ending against a boss lower
+    than itself (moulded housings). Where the rib's end meets the boss, its patch grows into the boss's
+    mid-cylinder (R 2.5); above the boss's top the end is the part's boundary and grows nothing. Mid-surface:
+    plate z = 1, the boss's cylinder R 2.5, the rib's plane y = 0 from the cylinder (below the boss's top) or
+    its end (above it) to x = 30. Faces: 15 (the plate's 6, the boss's outside and top, the bore and its floor,
+    the rib's sides, top and free end, and its end above the boss). Volume: the built solid's.
+    """
+    part = box(-50, -30, 0, 100, 60, 2) + cylinder_z(-30, 0, 2, 3.5, 20) + box(-26.57, -0.9, 2, 56.57, 1.8, 28)
+    part = single_solid(part - cylinder_z(-30, 0, 2, 1.5, 20))
+    return Fixture(part, part.volume, 15)
+
+
 def rib_through_boss() -> Fixture:
     """Plate 100 x 60 x 3 with a screw boss (outside R 5.25, bore R 2.25 through the plate, z 3..31.6) on the axis
     (50, 30), and a rib 2.86 thick (y 27.07..29.93, mid-plane y = 28.5) running through it from x = 20 to 80,
@@ -1268,6 +1283,7 @@ PARTS: list[Callable[[], Fixture]] = [
     t_rib_touching,
     plates_butted,
     rib_boss_bore,
+    rib_end_at_boss,
     rib_into_boss,
     rib_through_boss,
     rib_end_over_boss,

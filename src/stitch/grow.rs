@@ -90,7 +90,11 @@ pub(super) fn grow<K: Kernel>(
                     let step = joint::PROBE_STEP * info.thickness;
                     joint::through_material(p, k, length, step, info.to_mid, |q| solids[info.solid].contains(q))
                 };
-                joint::decide(patch, open, p, &patch_of, &thickness, info.reach, through)
+                // A curved edge of a freeform patch keeps its neighbours' lengths at the rim: its strip, ruled
+                // through points nearly on the edge at a stub, came out as a surface running far off the edge,
+                // left as a piece of its own (as with its growth to the rim, `edges::to_rim`).
+                let stubs = !info.freeform || straight(&fused.edges[edge]);
+                joint::decide(patch, open, p, &patch_of, &thickness, info.reach, stubs, through)
             }
             // Only growth to the rim; an edge that found no partner before is not counted again.
             Pass::Rims => Verdict::Rim,

@@ -26,6 +26,12 @@ pub const OVERSHOOT: f64 = 0.25;
 /// How far past a free edge the inside-the-material test looks, as a share of the edge's patch thickness: far
 /// enough to leave a thickness face behind, not so far as to cross a thin wall.
 pub const PROBE_STEP: f64 = 0.25;
+/// A sample of an edge that meets no partner through the material, and whose way out leaves the material within
+/// this share of its patch's thickness (the first probe step), is on the rim: its strip is a stub of
+/// [`RIM_STUB`] of the thickness there (a strip needs a length at every sample), not filled in from its
+/// neighbours' lengths.
+pub const RIM_TEST: f64 = 0.5;
+pub const RIM_STUB: f64 = 0.02;
 /// Samples per free edge (ends included): enough to follow a curved edge or a tilted partner.
 pub const SAMPLES: usize = 5;
 /// Farthest a free edge with no partner grows to the part's boundary, as a share of its patch thickness (plus
@@ -101,7 +107,9 @@ pub const LEVEL_FACE_COS: f64 = 0.999;
 /// Decides one free edge of patch `patch` (`open`: see [`is_open`]). `patch_of[f]` is the patch of fused face f,
 /// `thickness[p]` of patch p. `through(k, d)` says whether the way out from sample k stays in the material for
 /// the first `d` (see [`through_material`]): a meeting counts only when the way to its partner's wall does, for
-/// walls join through material, never across a void (a ring's bore) to its far side.
+/// walls join through material, never across a void (a ring's bore) to its far side. With `stubs`, the samples
+/// at the edge's ends that are on the rim grow stubs (see [`stubs_at_ends`]).
+#[allow(clippy::too_many_arguments)]
 pub fn decide(
     patch: usize,
     open: bool,
@@ -109,6 +117,7 @@ pub fn decide(
     patch_of: &[usize],
     thickness: &[f64],
     reach: f64,
+    stubs: bool,
     through: impl Fn(usize, f64) -> bool,
 ) -> Verdict {
     if !open {
@@ -165,7 +174,26 @@ pub fn decide(
     let kind = if 2 * on_face > met { JointKind::T } else { JointKind::L };
     distances.sort_by(f64::total_cmp);
     let distance = distances[distances.len() / 2];
+    let own = thickness[patch];
+    let on_rim: Vec<bool> =
+        (0..reached.len()).map(|k| stubs && reached[k].is_none() && !through(k, RIM_TEST * own)).collect();
+    let reached = stubs_at_ends(reached, &on_rim, RIM_STUB * own);
     Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached), distance })
+}
+
+/// `reached` with the samples of a run at either end of the edge that met no partner and whose way out leaves
+/// the material at once (`on_rim`) set to `stub`. Such a run is the stretch of the edge past its partner's wall,
+/// on the part's boundary (a rib's end standing above the boss it runs into): filled in from its neighbours'
+/// lengths, the strip would run on out of the material. A sample inside the edge that met nothing is filled in
+/// as before (a ray that slipped between faces).
+fn stubs_at_ends(mut reached: Vec<Option<f64>>, on_rim: &[bool], stub: f64) -> Vec<Option<f64>> {
+    let n = reached.len();
+    let leading = on_rim.iter().take_while(|&&r| r).count();
+    let trailing = if leading == n { 0 } else { on_rim.iter().rev().take_while(|&&r| r).count() };
+    for k in (0..leading).chain(n - trailing..n) {
+        reached[k] = Some(stub);
+    }
+    reached
 }
 
 /// Whether points every `step` along the way out from sample `k` of the edge, before `length`, lie in the

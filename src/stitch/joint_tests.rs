@@ -21,7 +21,7 @@ fn an_edge_whose_outside_is_outside_the_solid_is_rim() {
     // Material only below z = -0.5 at x >= 1.5: one sample of three.
     let contains = |q: DVec3| q.z < -0.4 && q.x >= 1.5;
     assert!(!is_open(&p, 0.5, 0.0, |q, _| contains(q)));
-    assert_eq!(decide(1, false, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true), Verdict::Rim);
+    assert_eq!(decide(1, false, &p, &PATCH_OF, &THICKNESS, 3.0, true, |_, _| true), Verdict::Rim);
     assert!(is_open(&p, 0.5, 0.0, |q: DVec3, _| q.z < -0.4 && q.x >= 0.5));
 }
 
@@ -42,7 +42,7 @@ fn an_edge_on_a_skin_is_tested_at_the_middle_of_its_wall() {
 #[test]
 fn a_rib_edge_meeting_the_base_face_is_a_t_joint_with_overshoot() {
     let p = probe(vec![vec![hit(0, 1.0, 0.0)], vec![hit(1, 1.0, 0.0)], vec![hit(1, 1.0, 0.0), hit(3, 2.0, 0.0)]]);
-    let Verdict::Extend(e) = decide(1, true, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true) else { panic!() };
+    let Verdict::Extend(e) = decide(1, true, &p, &PATCH_OF, &THICKNESS, 3.0, true, |_, _| true) else { panic!() };
     assert_eq!(e.kind, JointKind::T);
     assert_eq!(e.partner, 0);
     assert_eq!(e.lengths, vec![1.5; 3]);
@@ -51,7 +51,7 @@ fn a_rib_edge_meeting_the_base_face_is_a_t_joint_with_overshoot() {
 #[test]
 fn meeting_the_support_past_the_boundary_is_an_l_joint() {
     let p = probe(vec![vec![hit(2, 0.5, 0.5)], vec![hit(2, 0.7, 0.5)]]);
-    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true) else { panic!() };
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, true, |_, _| true) else { panic!() };
     assert_eq!(e.kind, JointKind::L);
     assert_eq!(e.partner, 1);
     assert_eq!(e.lengths, vec![0.75, 0.95]);
@@ -79,23 +79,23 @@ fn an_l_meeting_outside_the_material_is_no_joint_and_one_inside_is() {
     // The web's support at z = 0.75 lies 1.8 ahead, 3.75 past the web patch's end: the way there leaves the part.
     let (p, section) = flange_over_rounded_corner(vec![hit(2, 1.8, 3.75)]);
     let through = |k, length| through_material(&p, k, length, 0.625, 0.0, section);
-    assert_eq!(decide(0, true, &p, &PATCH_OF, &FLANGE_WEB, 3.75, through), Verdict::Unresolved);
+    assert_eq!(decide(0, true, &p, &PATCH_OF, &FLANGE_WEB, 3.75, true, through), Verdict::Unresolved);
     // With a sharp outer corner the same meeting lies in the corner's block: an L-joint.
     let sharp = |q: DVec3| q.x >= 0.0 && q.z >= 0.0;
     let through = |k, length| through_material(&p, k, length, 0.625, 0.0, sharp);
-    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &FLANGE_WEB, 3.75, through) else { panic!() };
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &FLANGE_WEB, 3.75, true, through) else { panic!() };
     assert_eq!((e.kind, e.partner), (JointKind::L, 1));
     // A partner's face met within the material (a T) needs the way only up to that wall's skin.
     let (p, section) = flange_over_rounded_corner(vec![hit(2, 1.2, 0.0)]);
     let through = |k, length| through_material(&p, k, length, 0.625, 0.0, section);
-    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &FLANGE_WEB, 3.75, through) else { panic!() };
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &FLANGE_WEB, 3.75, true, through) else { panic!() };
     assert_eq!((e.kind, e.partner), (JointKind::T, 1));
 }
 
 #[test]
 fn own_patch_and_out_of_reach_meetings_do_not_count() {
     let p = probe(vec![vec![hit(1, 0.5, 0.0), hit(3, 3.5, 0.0)], vec![hit(3, 1.0, 4.0)]]);
-    assert_eq!(decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true), Verdict::Unresolved);
+    assert_eq!(decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, true, |_, _| true), Verdict::Unresolved);
 }
 
 #[test]
@@ -109,10 +109,10 @@ fn a_wall_across_a_void_is_no_partner_and_a_nearer_one_through_material_wins() {
     let through = |k, length| through_material(&p, k, length, 0.25, 0.0, solid);
     assert!(!through(1, 4.0 - 0.5), "the way to the far side crosses the bore");
     assert!(through(1, 0.9), "up to the bore it stays in the material");
-    assert_eq!(decide(0, true, &p, &PATCH_OF, &THICKNESS, 5.0, through), Verdict::Unresolved);
+    assert_eq!(decide(0, true, &p, &PATCH_OF, &THICKNESS, 5.0, true, through), Verdict::Unresolved);
     p.hits = vec![vec![hit(2, 0.9, 0.0), hit(3, 4.0, 0.0)]; 3];
     let through = |k, length| through_material(&p, k, length, 0.25, 0.0, solid);
-    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 5.0, through) else { panic!() };
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 5.0, true, through) else { panic!() };
     assert_eq!(e.partner, 1);
 }
 
@@ -138,7 +138,7 @@ fn the_nearest_meeting_wins_and_samples_without_one_are_interpolated() {
         vec![hit(2, 3.0, 0.0)],
         vec![],
     ]);
-    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, |_, _| true) else { panic!() };
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, true, |_, _| true) else { panic!() };
     assert_eq!(e.partner, 1);
     // Sample 2's best meeting is patch 2's support (0.5 + gap 2 = 2.5 > 2.0): patch 1 there too.
     assert_eq!(e.lengths, vec![1.25, 1.75, 2.25, 3.25, 3.25]);
@@ -167,4 +167,31 @@ fn an_edge_short_of_the_boundary_grows_to_it_and_one_on_it_stays() {
 #[test]
 fn gaps_fill_by_interpolation_and_holding() {
     assert_eq!(fill_gaps(&[None, Some(1.0), None, Some(3.0), None]), vec![1.0, 1.0, 2.0, 3.0, 3.0]);
+}
+
+#[test]
+fn a_rib_end_standing_above_the_boss_it_runs_into_grows_only_where_it_meets_the_boss() {
+    // A rib's end edge at x = 0 (samples up z, facing -x) running into a tube (patch 1) 1.2 away up to z = 2:
+    // the boss's top. Above it the way out leaves the material at once: a stub there, not the lower samples'
+    // length (before, the strip ran on over the boss's top, out of the material).
+    let mut p = probe((0..5).map(|k| if k < 3 { vec![hit(2, 1.2, 0.0)] } else { Vec::new() }).collect());
+    p.points = (0..5).map(|k| DVec3::new(0.0, 0.0, k as f64)).collect();
+    p.outward = vec![-DVec3::X; 5];
+    let solid = |q: DVec3| q.z <= 2.2 || q.x > 0.0;
+    let through = |k, length| through_material(&p, k, length, 0.25, 0.0, solid);
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, true, through) else { panic!() };
+    let full = 1.2 + OVERSHOOT * THICKNESS[1];
+    assert_eq!(e.lengths, vec![full, full, full, RIM_STUB * 2.0, RIM_STUB * 2.0]);
+    // Without stubs (a curved edge of a freeform patch), the lengths are filled in from the neighbours.
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, false, through) else { panic!() };
+    assert_eq!(e.lengths, vec![full; 5]);
+}
+
+#[test]
+fn only_runs_at_the_ends_of_the_edge_grow_stubs() {
+    // A sample inside the edge that met nothing is filled in (a ray that slipped between faces); the run at the
+    // end is the stretch past the partner's wall.
+    let reached = vec![Some(1.0), None, Some(1.0), None, None];
+    let on_rim = [false, true, false, true, true];
+    assert_eq!(stubs_at_ends(reached, &on_rim, 0.1), vec![Some(1.0), None, Some(1.0), Some(0.1), Some(0.1)]);
 }
