@@ -8,7 +8,7 @@ from OCP.TopoDS import TopoDS_Compound, TopoDS_Shell
 
 from midsurf_sidecar.geom.topology import indexed_map
 from midsurf_sidecar.write import readback
-from shapes import box
+from shapes import box, shaft
 
 
 def shells_of(groups):
@@ -106,6 +106,8 @@ def test_the_check_counts_the_free_edges_read_back(tmp_path):
     assert written_and_checked(shells_of([faces]), tmp_path / "closed.step").free_edges == 0
     apart = [[BRepBuilderAPI_Copy(face).Shape()] for face in faces]
     assert written_and_checked(shells_of(apart), tmp_path / "apart.step").free_edges == 24
+    # A cylinder's seam joins its face to itself: no free edge (a solid kept as it is, `--keep-solids`).
+    assert written_and_checked(shaft(), tmp_path / "shaft.step").free_edges == 0
 
 
 def test_an_empty_face_written_is_named_broken_not_a_crash(tmp_path):

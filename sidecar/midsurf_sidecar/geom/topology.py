@@ -60,18 +60,20 @@ def ancestors(shape: TopoDS_Shape, kind: TopAbs_ShapeEnum, owner: TopAbs_ShapeEn
     return found
 
 
-def edge_uses(shape: TopoDS_Shape) -> tuple[int, int]:
+def edge_uses(shape: TopoDS_Shape, seams_free: bool = True) -> tuple[int, int]:
     """Edges of `shape` used by one face (free) and by three or more (non-manifold), degenerate edges left out
-    and a seam counted once per face."""
+    and a seam counted once per face: free, unless not `seams_free` (a closed face's seam joins it to itself)."""
     owners = ancestors(shape, TopAbs_EDGE, TopAbs_FACE)
     free = nonmanifold = 0
     for k in range(1, owners.Size() + 1):
-        if BRep_Tool.Degenerated_s(TopoDS.Edge(owners.FindKey(k))):
+        edge = TopoDS.Edge(owners.FindKey(k))
+        if BRep_Tool.Degenerated_s(edge):
             continue
         faces = IndexedShapeMap()
         for face in owners.FindFromIndex(k):
             faces.Add(face)
-        free += faces.Size() == 1
+        seam = faces.Size() == 1 and BRep_Tool.IsClosed_s(edge, TopoDS.Face(faces.FindKey(1)))
+        free += faces.Size() == 1 and (seams_free or not seam)
         nonmanifold += faces.Size() >= 3
     return free, nonmanifold
 
