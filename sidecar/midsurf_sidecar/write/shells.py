@@ -161,7 +161,7 @@ def _merge(
     # pieces that together go all the way round (a tube's pieces joined along both sides) merge into a face closed
     # on itself again, its seam a free edge. A merged face whose wires touch (a hole meeting the outer boundary at
     # a vertex: a floor's pieces joined round a boss's foot up to a rib running into it) passes BRepCheck, but a
-    # reader mends it by rebuilding its edges, and the edges it shared with other faces come apart in the file.
+    # reader may mend it by rebuilding its edges, and the edges it shared with other faces then come apart.
     # Such groups are merged again across the edges that do not run along the way round (`around`), and when that
     # fails too they stay as pieces; the other groups merge.
     originals = ShapeMap()
