@@ -67,10 +67,18 @@ pub(super) fn to_rim(
     growth: RimGrowth,
 ) -> Option<Vec<f64>> {
     let patch = &patches[fused.faces[face].patch];
-    if (patch.freeform || !growth.curved) && !straight(&fused.edges[edge]) {
+    let curved = !straight(&fused.edges[edge]);
+    if (curved && !growth.curved) || freeform_curve(patch, &fused.edges[edge]) {
         return None;
     }
     shortfall(fused, face, probe, patches, solids, growth.lips)
+}
+
+/// Whether `edge` is a curved edge of a freeform patch: a strip of uneven lengths on it (ruled through points
+/// nearly on the edge where it is short) comes out off the edge or leaves faces that fail the kernel's check, so
+/// it grows neither to the rim nor stubs where it runs out of the material.
+pub(super) fn freeform_curve(patch: &PatchInfo, edge: &FusedEdge) -> bool {
+    patch.freeform && !straight(edge)
 }
 
 /// Whether an edge of the fused result is straight: its chord is STRAIGHT of its length.

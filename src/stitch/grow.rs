@@ -5,7 +5,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::bridge;
-use super::edges::{open, open_on_level, straight, to_rim, RimGrowth};
+use super::edges::{freeform_curve, open, open_on_level, straight, to_rim, RimGrowth};
 use super::joint::{self, Verdict};
 use super::{kept_faces, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
@@ -90,10 +90,8 @@ pub(super) fn grow<K: Kernel>(
                     let step = joint::PROBE_STEP * info.thickness;
                     joint::through_material(p, k, length, step, info.to_mid, |q| solids[info.solid].contains(q))
                 };
-                // A curved edge of a freeform patch keeps its neighbours' lengths at the rim: its strip, ruled
-                // through points nearly on the edge at a stub, came out as a surface running far off the edge,
-                // left as a piece of its own (as with its growth to the rim, `edges::to_rim`).
-                let stubs = !info.freeform || straight(&fused.edges[edge]);
+                // A curved edge of a freeform patch keeps its neighbours' lengths at the rim (`freeform_curve`).
+                let stubs = !freeform_curve(info, &fused.edges[edge]);
                 joint::decide(patch, open, p, &patch_of, &thickness, info.reach, stubs, through)
             }
             // Only growth to the rim; an edge that found no partner before is not counted again.
