@@ -997,6 +997,23 @@ def rib_into_boss() -> Fixture:
     return Fixture(part, part.volume, 15)
 
 
+def rib_in_boss_wall() -> Fixture:
+    """Plate 100 x 60 x 2 (x -50..50, y -30..30) with a screw boss (outside R 3.5, blind bore R 1.5, z 2..22) on
+    the axis (-30, 0), and a rib 1.8 thick (y 2.1..3.9) from x = -30 to 30, z 2..30: it runs into the boss off
+    its axis, ends over the axis and stands 8 above the boss. The class: a rib running into a boss's wall beside
+    the bore (moulded housings), its mid-plane (y = 3) passing outside the boss's mid-cylinder (R 2.5) but
+    through its wall. The rib's mid-plane never meets the mid-cylinder: the rib's end and the cylinder's edge
+    where the rib cuts the boss's outside face each other 0.5 apart, a step between two walls, bridged by a
+    ramp laid into the cylinder round its axis (a ramp laid straight along the cylinder's tangent plane ends off
+    the cylinder and joins neither). Mid-surface: plate z = 1, the boss's cylinder R 2.5, the rib's plane y = 3
+    from its end to x = 30, joined. Faces: 15 (the plate's 6, the boss's outside and top, the bore and its
+    floor, the rib's sides, top and free end, and its end above the boss). Volume: the built solid's.
+    """
+    part = box(-50, -30, 0, 100, 60, 2) + cylinder_z(-30, 0, 2, 3.5, 20) + box(-30, 2.1, 2, 60, 1.8, 28)
+    part = single_solid(part - cylinder_z(-30, 0, 2, 1.5, 20))
+    return Fixture(part, part.volume, 15)
+
+
 def rib_end_at_boss() -> Fixture:
     """Plate 100 x 60 x 2 (x -50..50, y -30..30) with a screw boss (outside R 3.5, blind bore R 1.5, z 2..22) on
     the axis (-30, 0), and a rib 1.8 thick (y -0.9..0.9) from x = -26.57, 0.07 into the boss's outside, to 30, z
@@ -1284,6 +1301,7 @@ PARTS: list[Callable[[], Fixture]] = [
     plates_butted,
     rib_boss_bore,
     rib_end_at_boss,
+    rib_in_boss_wall,
     rib_into_boss,
     rib_through_boss,
     rib_end_over_boss,

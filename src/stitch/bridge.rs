@@ -29,6 +29,9 @@ pub struct LooseEdge {
     /// The plane of the face the edge bounds (a point on it, its unit normal), when that face is flat up to the
     /// edge: a flat bridge lying in it continues that face (`step_bridges`).
     pub plane: Option<[DVec3; 2]>,
+    /// A point of the face the edge bounds and the face's unit normal there: with the edge's own samples, they
+    /// tell how the face runs on inside the edge (`run_inside`).
+    pub face: [DVec3; 2],
 }
 
 impl LooseEdge {
@@ -476,9 +479,12 @@ fn line_bridge(
         return None;
     }
     let (s0, s1) = shared_stretch((a, u, la), (b, v, lb))?;
-    let ramp = laid_down(et, s1 - s0 >= STEP_SPAN_SHARE * lb && s1 - s0 >= reach, level, across);
-    let run = if ramp { RAMP_RUN * et.thickness } else { 0.0 };
-    let far = offset - ek.outward() * run;
+    // A ramp ends on a line a run inside the thick edge, on the thick patch: where the patch's course inside
+    // the edge is not known (neither flat nor a cylinder about the edge's line), the bridge stays upright.
+    let inside = || run_inside(ek, v, RAMP_RUN * et.thickness);
+    let ramp = laid_down(et, s1 - s0 >= STEP_SPAN_SHARE * lb && s1 - s0 >= reach, level, across).then(inside).flatten();
+    let far = offset + ramp.unwrap_or(DVec3::ZERO);
+    let ramp = ramp.is_some();
     let on_a = |s: f64| a + u * s;
     let quad = [on_a(s0), on_a(s0) + far, on_a(s1) + far, on_a(s1)];
     Some((gap, owned(edges, thin, thick, first, ramp, quad, None)))
@@ -648,6 +654,41 @@ pub fn band_middle(quad: &[DVec3; 4], origin: DVec3, direction: DVec3) -> DVec3 
     let middle = glam::DQuat::from_axis_angle(direction, 0.5 * turn) * from;
     origin + direction * (0.5 * (height(quad[0]) + height(quad[1]))) + middle
 }
+
+/// The move from the straight edge `ek` (direction `u`) onto the line `run` inside it along its face: straight
+/// into a flat face; about the axis of a cylindrical face whose axis runs along the edge (a boss's wall seen from
+/// a rib running into it off its axis, whose mid-plane passes the mid-cylinder: a straight run in the tangent
+/// plane would end off the cylinder, and the ramp there joins neither patch); None for any other face. The face
+/// is told from its point and normal (`LooseEdge::face`) against the edge's middle sample and normal.
+fn run_inside(ek: &LooseEdge, u: DVec3, run: f64) -> Option<DVec3> {
+    let [point, normal] = ek.face;
+    let (p, n) = (ek.points[ek.points.len() / 2], ek.normal);
+    let into = -ek.outward();
+    let span = (p - point).length().max(STRAIGHT_FLOOR);
+    // The face's normal may be given for either side of it.
+    let parallel = n.distance(normal).min(n.distance(-normal)) <= COURSE_SHARE;
+    if parallel && (p - point).dot(n).abs() <= COURSE_SHARE * span {
+        return Some(into * run);
+    }
+    if n.dot(u).abs() > COURSE_SHARE || normal.dot(u).abs() > COURSE_SHARE {
+        return None;
+    }
+    // A cylinder about an axis along u: p = c + r n and point = c + r normal, so across u their offset is r
+    // times the normals' difference (r < 0 where the normal points to the axis).
+    let across = |v: DVec3| v.reject_from_normalized(u);
+    let offset = across(p - point);
+    let radius = [normal, -normal].into_iter().find_map(|normal| {
+        let turn = across(n - normal);
+        let r = offset.dot(turn) / turn.length_squared().max(f64::MIN_POSITIVE);
+        (turn.length() > COURSE_SHARE && (offset - turn * r).length() <= COURSE_SHARE * span).then_some(r)
+    })?;
+    let (radial, angle) = (n * radius.signum(), run / radius.abs());
+    Some(radius.abs() * (radial * (angle.cos() - 1.0) + into * angle.sin()))
+}
+
+/// A face runs on flat, or round a cylinder, inside its edge when its point and normal fit that within this
+/// share (of the distance between the point and the edge, for lengths).
+const COURSE_SHARE: f64 = 1e-3;
 
 /// Whether the bridge from the thin edge `et` is laid down into a ramp, given its offset to the thick edge along
 /// the thin patch's normal (`level`) and outward direction (`across`). A ramp only where the thin edge `spans`

@@ -1,4 +1,6 @@
-use glam::DVec3;
+use std::f64::consts::FRAC_PI_2;
+
+use glam::{DVec2, DVec3};
 
 use super::*;
 
@@ -20,6 +22,7 @@ fn open_edge(patch: usize, thickness: f64, points: Vec<DVec3>, normal: DVec3, ou
         freeform: false,
         open: true,
         outwards: vec![outward; points.len()],
+        face: [points[0] - outward, normal],
         points,
         normal,
         plane: None,
@@ -223,6 +226,36 @@ fn a_gap_in_a_tubes_own_surface_is_closed_by_a_band_of_its_cylinder() {
     assert!(ruling_gaps(&freeform).is_empty());
     let flat = [loose(0, 2.0, 50.0, 1.0, (0.0, 60.0), DVec3::X), loose(0, 2.0, 52.0, 1.0, (60.0, 0.0), -DVec3::X)];
     assert!(ruling_gaps(&flat).is_empty());
+}
+
+#[test]
+fn a_step_from_a_rib_to_a_boss_beside_it_ramps_onto_the_boss_cylinder() {
+    // A boss's mid-cylinder (r 2.5 about the z axis, t 2) stops at 90 degrees where a rib (t 1.8, mid-plane
+    // y = 3) cuts its outside; the rib ends over the axis. The two edges face each other 0.5 apart: a step.
+    let mut boss = ruling(0, 2.5, FRAC_PI_2, (0.0, 20.0), -1.0);
+    boss.thickness = 2.0;
+    boss.face = [DVec3::new(-2.5, 0.0, 10.0), -DVec3::X];
+    let rib_end = (0..5).map(|k| DVec3::new(0.0, 3.0, 20.0 * k as f64 / 4.0)).collect();
+    let rib = open_edge(1, 1.8, rib_end, DVec3::Y, -DVec3::X);
+    let bridges = step_bridges(&[boss.clone(), rib.clone()], COPLANAR);
+    assert_eq!(bridges.len(), 1, "{bridges:?}");
+    let StepBridge { owner, quad, .. } = &bridges[0];
+    assert_eq!(*owner, 1, "the thinner rib owns the ramp");
+    // The ramp runs 0.5 x 1.8 = 0.9 round the cylinder from its edge: onto it, not off along its tangent.
+    let turned = FRAC_PI_2 + 0.9 / 2.5;
+    for far in [quad[1], quad[2]] {
+        assert!(far.truncate().distance(2.5 * DVec2::new(turned.cos(), turned.sin())) < 1e-9, "{quad:?}");
+    }
+    // The face's normal given for its other side: the same cylinder.
+    let flipped = LooseEdge { face: [DVec3::new(-2.5, 0.0, 10.0), DVec3::X], ..boss.clone() };
+    assert_eq!(step_bridges(&[flipped, rib.clone()], COPLANAR), bridges);
+    // A face that is neither flat nor a cylinder about the edge (a cone's normal leans along it): upright.
+    let cone = LooseEdge { face: [DVec3::new(-2.5, 0.0, 10.0), DVec3::new(-0.8, 0.0, 0.6)], ..boss };
+    let upright = step_bridges(&[cone, rib], COPLANAR);
+    assert_eq!(upright.len(), 1, "{upright:?}");
+    let on = |p: DVec3, y: f64| p.truncate().distance(DVec2::new(0.0, y)) < 1e-9;
+    let quad = upright[0].quad;
+    assert!(quad.iter().all(|&p| on(p, 2.5) || on(p, 3.0)), "between the two edges: {quad:?}");
 }
 
 /// A straight open edge of patch `patch` from `from` to `to` (5 samples), facing +z.

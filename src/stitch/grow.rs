@@ -309,6 +309,7 @@ fn step_quads(
                 normal: p.normals[mid],
                 outwards: p.outward.clone(),
                 plane: flat_up_to(&fused.faces[e.face], &p.points, same_point),
+                face: [fused.faces[e.face].point, fused.faces[e.face].normal.normalize_or_zero()],
             }
         })
         .collect();

@@ -37,7 +37,12 @@ fn v(p: DVec3) -> Value {
 
 /// A fused face of `patch` with normal `normal` (the rest does not matter to stitch).
 fn face(patch: usize, normal: DVec3) -> Value {
-    json!({"patch": patch, "area": 100.0, "centroid": [0, 0, 0], "point": [0, 0, 0], "normal": v(normal), "edges": []})
+    face_at(patch, DVec3::ZERO, normal)
+}
+
+/// A face of `patch` through `point`, with its normal there.
+fn face_at(patch: usize, point: DVec3, normal: DVec3) -> Value {
+    json!({"patch": patch, "area": 100.0, "centroid": v(point), "point": v(point), "normal": v(normal), "edges": []})
 }
 
 /// A straight edge from a to b on `faces`.
@@ -205,7 +210,7 @@ fn two_levels_of_a_wall_at_a_thickness_step_are_bridged_by_a_ramp() {
     let thin = (DVec3::new(20.0, 0.0, 1.0), DVec3::new(20.0, 10.0, 1.0));
     let thick = (DVec3::new(20.0, 0.0, 1.5), DVec3::new(20.0, 10.0, 1.5));
     let fused = fused(
-        vec![face(0, DVec3::Z), face(1, DVec3::Z)],
+        vec![face_at(0, DVec3::new(10.0, 5.0, 1.0), DVec3::Z), face_at(1, DVec3::new(30.0, 5.0, 1.5), DVec3::Z)],
         vec![edge(thin.0, thin.1, &[0]), edge(thick.0, thick.1, &[1])],
     );
     let probes = json!({"edges": [
