@@ -1021,8 +1021,8 @@ def bosses_merged_rings() -> Fixture:
     housings). Each boss's outside stops where the other's begins, so each mid-cylinder has a gap inside the
     other's wall, closed by a band of its own cylinder; its foot grows down into the plate. Not met yet: the
     band stops at the plate's top and its notch down to the plate's mid-plane stays open (11.6 mm of gap;
-    growing the band down with the foot's strips closes it, but the write stage then leaves the foot's band a
-    face of its own, which the judge measures along the plate). Faces: 13. Volume: the built solid's.
+    growing the band down with the foot's strips closes it here, but on other parts opened more than it closed).
+    Faces: 13. Volume: the built solid's.
     """
     part = box(-50, -30, 0, 100, 60, 3) + cylinder_z(-30, -3.54, 3, 5.25, 6.5) + cylinder_z(-30, 3.54, 3, 5.25, 6.5)
     part = part - cylinder_z(-30, -3.54, 3, 2.25, 6.5) - cylinder_z(-30, 3.54, 3, 2.25, 6.5)
