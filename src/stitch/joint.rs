@@ -175,9 +175,13 @@ pub fn decide(
     distances.sort_by(f64::total_cmp);
     let distance = distances[distances.len() / 2];
     let own = thickness[patch];
-    let on_rim: Vec<bool> =
-        (0..reached.len()).map(|k| stubs && reached[k].is_none() && !through(k, RIM_TEST * own)).collect();
-    let reached = stubs_at_ends(reached, &on_rim, RIM_STUB * own);
+    let reached = if stubs {
+        // The way out is tested (rays) only along the runs at the ends.
+        let on_rim = |k: usize| reached[k].is_none() && !through(k, RIM_TEST * own);
+        stubs_at_ends(reached.clone(), on_rim, RIM_STUB * own)
+    } else {
+        reached
+    };
     Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached), distance })
 }
 
@@ -186,10 +190,10 @@ pub fn decide(
 /// on the part's boundary (a rib's end standing above the boss it runs into): filled in from its neighbours'
 /// lengths, the strip would run on out of the material. A sample inside the edge that met nothing is filled in
 /// as before (a ray that slipped between faces).
-fn stubs_at_ends(mut reached: Vec<Option<f64>>, on_rim: &[bool], stub: f64) -> Vec<Option<f64>> {
+fn stubs_at_ends(mut reached: Vec<Option<f64>>, on_rim: impl Fn(usize) -> bool, stub: f64) -> Vec<Option<f64>> {
     let n = reached.len();
-    let leading = on_rim.iter().take_while(|&&r| r).count();
-    let trailing = if leading == n { 0 } else { on_rim.iter().rev().take_while(|&&r| r).count() };
+    let leading = (0..n).take_while(|&k| on_rim(k)).count();
+    let trailing = if leading == n { 0 } else { (0..n).rev().take_while(|&k| on_rim(k)).count() };
     for k in (0..leading).chain(n - trailing..n) {
         reached[k] = Some(stub);
     }

@@ -193,5 +193,5 @@ fn only_runs_at_the_ends_of_the_edge_grow_stubs() {
     // end is the stretch past the partner's wall.
     let reached = vec![Some(1.0), None, Some(1.0), None, None];
     let on_rim = [false, true, false, true, true];
-    assert_eq!(stubs_at_ends(reached, &on_rim, 0.1), vec![Some(1.0), None, Some(1.0), Some(0.1), Some(0.1)]);
+    assert_eq!(stubs_at_ends(reached, |k| on_rim[k], 0.1), vec![Some(1.0), None, Some(1.0), Some(0.1), Some(0.1)]);
 }
