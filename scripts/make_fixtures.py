@@ -719,6 +719,22 @@ def plate_lip() -> Fixture:
     return Fixture(single_solid(prism_xz(polygon_xz(profile), 60)), area * 60, 9)
 
 
+def rib_low_with_hook() -> Fixture:
+    """Plate 100 x 60 x 2 (x -50..50, y -30..30) with a rib 1 thick (y -0.5..0.5) from x = -30 to 30 only 0.9 tall
+    (z 2..2.9), rising at x -4..4 to a hook 6 tall, with two fins 1 thick on the hook's -y side (x -4..-3 and
+    3..4, y -3..-0.5, z 2..8). The class: a low rib, narrower than it is thick, running into a taller feature
+    (a snap hook, a tab) that one of its sides runs on up (moulded covers). The rib's +y side is one face up the
+    hook, the fins split its -y side, so each low stretch's -y face (0.9 wide) pairs alone with the tall face
+    across and the pair's faces are not both narrow. A stretch of wall narrower than it is thick is no wall: its
+    material is the plate's, as for a low rib on its own. Mid-surface: the plate (z = 1), the hook's wall (y = 0,
+    x -3..3) and its fins, joined; no patch for the low stretches.
+    Faces: 21. Volume: the built solid's.
+    """
+    part = box(-50, -30, 0, 100, 60, 2) + box(-30, -0.5, 2, 60, 1, 0.9) + box(-4, -0.5, 2, 8, 1, 6)
+    part = single_solid(part + box(-4, -3, 2, 1, 2.5, 6) + box(3, -3, 2, 1, 2.5, 6))
+    return Fixture(part, part.volume, 21)
+
+
 def spherical_cap() -> Fixture:
     """A spherical shell cap: the material between concentric spheres R 30 and R 28 centred at (30, 30, -10),
     above z = 0 (a dome, a lamp's shade): the class of a concentric sphere pair. Mid-surface: the sphere R 29.
@@ -1297,6 +1313,7 @@ PARTS: list[Callable[[], Fixture]] = [
     plate_thick_pad,
     plate_chamfered_pad,
     plate_lip,
+    rib_low_with_hook,
     tray_thick_rim,
     spherical_cap,
     dome_bspline,

@@ -269,6 +269,24 @@ impl FaceGraph {
         self.neighbours_through(face, |e| e.convexity == Convexity::Smooth)
     }
 
+    /// How far `face` reaches from the plane through `point` along `normal` (unit): the farthest of its mesh's
+    /// vertices, or of its box's two corners without a mesh.
+    pub fn reach(&self, face: FaceId, point: DVec3, normal: DVec3) -> f64 {
+        let f = &self.faces[face];
+        let corners = [f.bbox.min, f.bbox.max];
+        let vertices = match f.mesh.as_ref() {
+            Some(mesh) if !mesh.vertices.is_empty() => &mesh.vertices[..],
+            _ => &corners[..],
+        };
+        vertices.iter().map(|&v| normal.dot(v - point)).fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Faces adjacent to `face` through a concave edge, sorted and deduplicated: the walls it stands on or that
+    /// stand on it.
+    pub fn concave_neighbours(&self, face: FaceId) -> Vec<FaceId> {
+        self.neighbours_through(face, |e| e.convexity == Convexity::Concave)
+    }
+
     fn neighbours_through(&self, face: FaceId, through: impl Fn(&Edge) -> bool) -> Vec<FaceId> {
         let mut out: Vec<FaceId> = self.faces[face]
             .loops

@@ -286,6 +286,59 @@ pub fn stub_sides(graph: &FaceGraph, pair: &Pair, skins: &[bool]) -> Option<Reje
     (joined_by_skin || sliver).then_some(Rejection::Stub { width, thickness: pair.thickness.mean, top: false })
 }
 
+/// A face stands on a base along its length when their concave edges make at least this share of its length.
+const STANDS_ALONG: f64 = 0.5;
+
+/// The length of the concave edges between `face` and `other`.
+fn concave_length(graph: &FaceGraph, face: FaceId, other: FaceId) -> f64 {
+    graph.faces[face]
+        .loops
+        .iter()
+        .flatten()
+        .map(|&e| &graph.edges[e])
+        .filter(|e| e.convexity == Convexity::Concave && e.faces.contains(&other))
+        .map(|e| e.length)
+        .sum()
+}
+
+/// A planar face lies wholly over its partner when at least this share of its area overlaps it (the overlap is
+/// measured on the faces' meshes).
+const LIES_OVER: f64 = 0.9;
+
+/// One side of a low stretch of a wall: a planar face narrower than the wall is thick (the width of the band of
+/// its area and perimeter: a short face is not narrow for being short), lying wholly over a partner that is no
+/// narrow face, the two standing on one plane skin of another wall (concave edges to it, along the face's
+/// length, or to two faces of it that the stub splits apart), the partner running on up at least as far as the
+/// wall is thick: a low rib whose other side runs on up a snap hook or tab rising from it. The low stretch is a
+/// stub: its material belongs to the wall it stands on. A narrow piece of a plate's skin between ribs stands on
+/// no skin that its partner, on the plate's other side, stands on too; two narrow faces (a rib low all along)
+/// are left to `stub_sides`.
+pub fn low_side(graph: &FaceGraph, pair: &Pair, skins: &[bool], tol: &Tolerances) -> Option<Rejection> {
+    if !all_planar(graph, &pair.faces) {
+        return None;
+    }
+    let widths = pair.faces.map(|f| graph.face_size(f)[1]);
+    let narrow = if widths[0] <= widths[1] { 0 } else { 1 };
+    let (face, partner) = (pair.faces[narrow], pair.faces[1 - narrow]);
+    let lies_over = pair.overlap_area >= LIES_OVER * graph.faces[face].area;
+    if widths[narrow] >= pair.thickness.mean || widths[1 - narrow] < pair.thickness.mean || !lies_over {
+        return None;
+    }
+    let bases = |f: FaceId| graph.concave_neighbours(f).into_iter().filter(|&s| skins[s]).collect::<Vec<_>>();
+    // The face stands on its base along its length, not at an end (where a rib runs into a wall).
+    let length = graph.face_size(face)[0];
+    let along = |s: FaceId| concave_length(graph, face, s) >= STANDS_ALONG * length;
+    let (under_face, under_partner) = (bases(face), bases(partner));
+    let stub = under_face.iter().filter(|&&s| along(s)).any(|&s| {
+        under_partner.iter().any(|&r| {
+            let (base, other) = (&graph.faces[s], &graph.faces[r]);
+            let one_base = s == r || one_plane(base, other, tol.point, tol.parallel_angle);
+            one_base && graph.reach(partner, base.point, base.normal) >= pair.thickness.mean
+        })
+    });
+    stub.then_some(Rejection::Stub { width: widths[narrow], thickness: pair.thickness.mean, top: false })
+}
+
 /// A planar or cylindrical face narrower than its distance to its partner cannot be a shell of its own (a level
 /// running round a box's rounded corner is the corner's as on the flats beside it). When that partner
 /// pairs with another face wide enough to be a wall (at least as wide as that pair is thick) at a different

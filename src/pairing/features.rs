@@ -164,18 +164,7 @@ fn stands_clear(
     let (Surface::Plane { .. }, FaceRole::Pair { group, .. }) = (&skin.surface, &roles[base]) else {
         return true;
     };
-    let height = region
-        .iter()
-        .flat_map(|&f| {
-            let face = &graph.faces[f];
-            let corners = [face.bbox.min, face.bbox.max];
-            match face.mesh.as_ref() {
-                Some(mesh) if !mesh.vertices.is_empty() => mesh.vertices.clone(),
-                _ => corners.to_vec(),
-            }
-        })
-        .map(|v| skin.normal.dot(v - skin.point))
-        .fold(0.0, f64::max);
+    let height = region.iter().map(|&f| graph.reach(f, skin.point, skin.normal)).fold(0.0, f64::max);
     height >= thickness[*group]
 }
 

@@ -332,7 +332,13 @@ fn reject_in_context(
             skins[face] |= *thickness <= tops_up_to;
         }
     }
-    let stubs = pairs.iter().map(|p| criteria::stub_sides(graph, p, &skins).map(|r| (p.faces.to_vec(), r))).collect();
+    let stubs = pairs
+        .iter()
+        .map(|p| {
+            let stub = criteria::stub_sides(graph, p, &skins).or_else(|| criteria::low_side(graph, p, &skins, tol));
+            stub.map(|r| (p.faces.to_vec(), r))
+        })
+        .collect();
     drop_rejected(pairs, near, stubs);
     let pairs_of = pairs_by_face(graph.faces.len(), settled.iter().chain(pairs.iter()));
     let minor = pairs

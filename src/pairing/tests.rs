@@ -613,6 +613,51 @@ fn planar_slivers_far_apart_are_no_wall_whatever_joins_them() {
     }
 }
 
+#[test]
+fn a_low_side_over_a_taller_partner_is_a_stub_side_where_both_stand_on_one_plane_skin() {
+    // A rib 1.0 thick on a plate (back 2 at z = 0, top in two pieces 3 and 4 either side of the rib): its side 0
+    // is 0.9 tall, its side 1 runs on up to 6 (a hook rising from the rib, whose other side 7 stands on the rib's
+    // top 5), so only side 0 is narrower than the rib is thick, and it lies wholly over side 1. Standing on the
+    // plate's top (split by the rib) the two are the sides of a low stub, whose material is the plate's. When
+    // side 1 stands on a skin off that plane (a level 0.5 higher), side 0 is but a narrow piece of a wall's skin,
+    // and the two stay a wall.
+    for (level, stub) in [(2.0, true), (2.5, false)] {
+        let faces = vec![
+            rect(DVec3::new(0.0, 10.0, 2.0), DVec3::Z * 0.9, DVec3::X * 20.0, -DVec3::Y),
+            rect(DVec3::new(0.0, 11.0, 2.0), DVec3::X * 20.0, DVec3::Z * 6.0, DVec3::Y),
+            rect(DVec3::new(-20.0, -20.0, 0.0), DVec3::Y * 60.0, DVec3::X * 60.0, -DVec3::Z),
+            rect(DVec3::new(-20.0, -20.0, 2.0), DVec3::X * 60.0, DVec3::Y * 30.0, DVec3::Z),
+            rect(DVec3::new(-20.0, 11.0, level), DVec3::X * 60.0, DVec3::Y * 29.0, DVec3::Z),
+            rect(DVec3::new(0.0, 10.0, 2.9), DVec3::X * 20.0, DVec3::Y * 1.0, DVec3::Z),
+            rect(DVec3::new(0.0, 11.0, 8.0), DVec3::X * 20.0, DVec3::Y * 1.0, DVec3::Z),
+            rect(DVec3::new(0.0, 10.0, 3.0), DVec3::Z * 5.0, DVec3::X * 20.0, -DVec3::Y),
+        ];
+        let edges = [
+            (0, 3, Convexity::Concave, 20.0),
+            (0, 5, Convexity::Convex, 20.0),
+            (1, 4, Convexity::Concave, 20.0),
+            (1, 6, Convexity::Convex, 20.0),
+            (7, 6, Convexity::Convex, 20.0),
+            (7, 5, Convexity::Concave, 20.0),
+        ];
+        let g = graph_with_lengths(faces, &edges);
+        assert!(criteria::test_pair(&g, 0, 1, &tol()).is_ok(), "the sides alone pass the pair tests");
+        let pairing = detect(&g, &tol(), &[true; 8]);
+        let paired = pairing.pairs.iter().any(|p| p.faces == [0, 1]);
+        assert_eq!(paired, !stub, "level {level}: {:?}", pairing.pairs);
+        if stub {
+            let near_miss = match &pairing.roles[0] {
+                FaceRole::Unpaired { near_miss } | FaceRole::Connecting { near_miss, .. } => near_miss.clone(),
+                _ => None,
+            };
+            assert!(matches!(
+                near_miss,
+                Some(NearMiss { candidate: 1, rejection: Rejection::Stub { top: false, .. } })
+            ));
+        }
+    }
+}
+
 fn is_stub_top(role: &FaceRole) -> bool {
     matches!(
         role,
