@@ -26,15 +26,21 @@ pub struct LooseEdge {
     pub normal: DVec3,
     /// The outward direction (in the patch, away from it) at each sample.
     pub outwards: Vec<DVec3>,
-    /// The plane of the face the edge bounds (a point on it, its unit normal), when that face is flat up to the
-    /// edge: a flat bridge lying in it continues that face (`step_bridges`).
-    pub plane: Option<[DVec3; 2]>,
     /// A point of the face the edge bounds and the face's unit normal there: with the edge's own samples, they
-    /// tell how the face runs on inside the edge (`run_inside`).
+    /// tell whether the face is flat up to the edge (`plane`) and how it runs on inside the edge (`run_inside`).
     pub face: [DVec3; 2],
 }
 
 impl LooseEdge {
+    /// The plane of the face the edge bounds (a point on it, its unit normal), when the edge's samples lie in the
+    /// face's tangent plane there within `coplanar`: the face is flat up to the edge (a curved face's tangent
+    /// plane leaves its edges), and a flat bridge lying in it continues that face (`step_bridges`).
+    pub fn plane(&self, coplanar: f64) -> Option<[DVec3; 2]> {
+        let [point, normal] = self.face;
+        let flat = normal != DVec3::ZERO && in_plane(&self.points, self.face, coplanar);
+        flat.then_some([point, normal])
+    }
+
     /// The outward direction at the edge's middle sample.
     pub fn outward(&self) -> DVec3 {
         self.outwards[self.outwards.len() / 2]
@@ -243,7 +249,7 @@ pub fn step_bridges(edges: &[LooseEdge], coplanar: f64) -> Vec<StepBridge> {
 /// does (`StepBridge::normal`, so that the merge into the face sees one surface, not its reverse); as it is when
 /// it lies in neither.
 fn continuing_plane(bridge: StepBridge, edges: &[LooseEdge], coplanar: f64) -> StepBridge {
-    let continues = |k: usize| edges[k].plane.is_some_and(|plane| in_plane(&bridge.quad, plane, coplanar));
+    let continues = |k: usize| edges[k].plane(coplanar).is_some_and(|plane| in_plane(&bridge.quad, plane, coplanar));
     if continues(bridge.owner) {
         return StepBridge { normal: edges[bridge.owner].normal, ..bridge };
     }

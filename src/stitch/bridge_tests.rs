@@ -25,7 +25,6 @@ fn open_edge(patch: usize, thickness: f64, points: Vec<DVec3>, normal: DVec3, ou
         face: [points[0] - outward, normal],
         points,
         normal,
-        plane: None,
     }
 }
 
@@ -96,13 +95,16 @@ fn an_in_plane_gap_is_bridged_flat() {
 
 #[test]
 fn a_flat_bridge_in_the_plane_of_one_edge_s_face_joins_that_face_facing_its_way() {
-    // A bend's patch (no plane at its edge) ends at x = 4.95, a flat wall's patch (plane z = 0.75, normal -z)
-    // starts at x = 5: the bend's edge comes first, but the quad lies in the flat's plane, so the flat owns it,
-    // facing -z as its face does.
-    let bend = loose(0, 1.5, 4.95, 0.75, (0.0, 30.0), DVec3::X);
+    // A bend's patch (no plane at its edge: its face's middle lies off the tangent plane there) ends at x = 4.95,
+    // a flat wall's patch (plane z = 0.75, normal -z) starts at x = 5: the bend's edge comes first, but the quad
+    // lies in the flat's plane, so the flat owns it, facing -z as its face does.
+    let bend = LooseEdge {
+        face: [DVec3::new(3.95, 15.0, 0.25), DVec3::Z],
+        ..loose(0, 1.5, 4.95, 0.75, (0.0, 30.0), DVec3::X)
+    };
     let flat = LooseEdge {
         normal: -DVec3::Z,
-        plane: Some([DVec3::new(40.0, 15.0, 0.75), -DVec3::Z]),
+        face: [DVec3::new(40.0, 15.0, 0.75), -DVec3::Z],
         ..loose(1, 1.5, 5.0, 0.75, (30.0, 0.0), -DVec3::X)
     };
     let bridges = step_bridges(&[bend.clone(), flat.clone()], COPLANAR);

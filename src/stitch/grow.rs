@@ -11,7 +11,7 @@ use super::{kept_faces, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
 use crate::kernel::protocol::{CornerRequest, Extended, GatherPart, Gathered, MadeStrip, Request, StripRequest};
 use crate::kernel::{FuseKind, Kernel, SidecarError};
-use crate::model::shapes::{EdgeProbe, Fused, FusedFace};
+use crate::model::shapes::{EdgeProbe, Fused};
 use crate::trim::Branch;
 use glam::DVec3;
 
@@ -308,7 +308,6 @@ fn step_quads(
                 points: p.points.clone(),
                 normal: p.normals[mid],
                 outwards: p.outward.clone(),
-                plane: flat_up_to(&fused.faces[e.face], &p.points, same_point),
                 face: [fused.faces[e.face].point, fused.faces[e.face].normal.normalize_or_zero()],
             }
         })
@@ -366,13 +365,6 @@ fn step_quads(
     }
     let bridged = open.iter().zip(&bridged).filter(|(_, &b)| b).map(|(e, _)| e.free).collect();
     Steps { quads: out, corners: step_corners, swept, bridged }
-}
-
-/// The plane of `face` (its point and normal) when the samples of an edge of it lie in that plane within
-/// `tolerance`: the face is flat up to the edge (a curved face's tangent plane at its middle leaves its edges).
-fn flat_up_to(face: &FusedFace, samples: &[DVec3], tolerance: f64) -> Option<[DVec3; 2]> {
-    let plane = [face.point, face.normal.try_normalize()?];
-    bridge::in_plane(samples, plane, tolerance).then_some(plane)
 }
 
 /// Strips of two edges meeting at a convex corner of a face leave a notch between them (a rib's bottom
