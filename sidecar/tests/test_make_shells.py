@@ -330,6 +330,34 @@ def test_a_tube_in_bands_merges_its_bands_along_the_axis_but_never_all_the_way_r
     assert faces_per_edge(shells_made) == [1, 1, 1, 1, 2, 2, 2, 2]
 
 
+def test_a_whole_tube_merges_with_its_foot_half_by_half_across_a_joint_line_down_the_foot(client):
+    # A boss's tube, whole round (z 3..20, written in two halves at its seam and halfway round), and its foot down
+    # into a floor (z 0..3) in two pieces meeting at 0.5 and 0.5 + 3 radians, a rib's end standing on the first
+    # line (a joint shared with another patch). The foot is cut at the tube's two lines too, and each half merges
+    # with the foot beside it: the half from 0 with the foot from 0.5 on (the larger of the two pieces beside it,
+    # which meet along the rib's line), the half from pi with all the foot beside it; the foot from 0 to 0.5
+    # stays a face of its own. Before, a group holding a face split at its seam was left in pieces.
+    cylinder = gp_Cylinder(gp_Ax3(), 10.0)
+    tube = BRepBuilderAPI_MakeFace(cylinder, 0.0, 2.0 * math.pi, 3.0, 20.0).Face()
+    foot = [BRepBuilderAPI_MakeFace(cylinder, a, b, 0.0, 3.0).Face() for a, b in ((0.5, 3.5), (3.5, 2 * math.pi + 0.5))]
+    out = (math.cos(0.5), math.sin(0.5))
+    rib = rectangle((10 * out[0], 10 * out[1], 0), (15 * out[0], 15 * out[1], 0), (15 * out[0], 15 * out[1], 3),
+                    (10 * out[0], 10 * out[1], 3))
+    f = fused(client, tube, *foot, rib)
+    ids = {face["patch"]: [] for face in f["faces"]}
+    for i, face in enumerate(f["faces"]):
+        ids[face["patch"]].append(i)
+    group = ids[0] + ids[1] + ids[2]
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[group + ids[3]], merge=[group])
+    made = client.session.store.get(ok["handle"])
+    assert ok["valid"] is True
+    areas = sorted(round(a, 3) for a in face_areas(made))
+    half, sliver = 10.0 * math.pi * 17.0, 10.0 * 0.5 * 3.0
+    rib_area = 5.0 * 3.0
+    assert areas == sorted(round(a, 3) for a in (sliver, rib_area, half + 10.0 * (math.pi - 0.5) * 3.0,
+                                                 half + 10.0 * math.pi * 3.0))
+
+
 class RecordingMerger:
     """Stands in for ShapeUpgrade_UnifySameDomain: records the shape it is given, then fails to build."""
 

@@ -168,6 +168,20 @@ fn stands_clear(
     height >= thickness[*group]
 }
 
+/// The bore `region` behind a loop of the planar skin `base` runs on past the skin's wall at least as far
+/// again as the wall is thick (its extent along the skin's normal is twice the wall's thickness or more): the
+/// bore of a boss or tube standing on the wall (a screw boss over a through hole), whose tube keeps its
+/// mid-patch, not a hole in the wall. A shorter bore (a hole through the wall, countersunk or with a low collar
+/// round it) is the wall's hole. A curved skin has no plane to measure from: its bores are its holes.
+fn runs_on(graph: &FaceGraph, base: FaceId, roles: &[FaceRole], thickness: &[f64], region: &BTreeSet<FaceId>) -> bool {
+    let skin = &graph.faces[base];
+    let (Surface::Plane { .. }, FaceRole::Pair { group, .. }) = (&skin.surface, &roles[base]) else {
+        return false;
+    };
+    let reach = |normal: DVec3| region.iter().map(|&f| graph.reach(f, skin.point, normal)).fold(0.0, f64::max);
+    reach(skin.normal) + reach(-skin.normal) >= 2.0 * thickness[*group]
+}
+
 fn diagonal(graph: &FaceGraph, faces: &BTreeSet<FaceId>) -> f64 {
     let min = faces.iter().fold(DVec3::INFINITY, |m, &f| m.min(graph.faces[f].bbox.min));
     let max = faces.iter().fold(DVec3::NEG_INFINITY, |m, &f| m.max(graph.faces[f].bbox.max));
@@ -276,6 +290,7 @@ pub fn recognise(
             } else {
                 hole_diameter(graph, &region, tolerance)
                     .filter(|&d| d <= limits.hole_max && !limits.keep_holes)
+                    .filter(|_| !runs_on(graph, face.id, roles, thickness, &region))
                     .map(|d| (FeatureKind::Hole, d))
             };
             if let Some((kind, size)) = feature {

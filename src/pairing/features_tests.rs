@@ -75,6 +75,22 @@ fn large_or_kept_holes_stay() {
 }
 
 #[test]
+fn a_bore_running_on_past_the_wall_is_a_boss_s_bore_not_a_hole() {
+    // The through hole of the test above, its bore running on 3 past the plate's top (z 0..6, twice the plate's
+    // thickness): the bore of a screw boss over a through hole, kept for the boss's tube. 2.9 past (z 0..5.9),
+    // it is still the plate's hole (a low collar round it).
+    for (past, hole) in [(3.0, false), (2.9, true)] {
+        let (mut g, roles) = plate_with([hole_half(), hole_half()], Convexity::Convex, true);
+        for face in &mut g.faces[1..3] {
+            face.mesh.as_mut().unwrap().vertices.iter_mut().for_each(|v| v.z *= (3.0 + past) / 3.0);
+            face.bbox.max.z = 3.0 + past;
+        }
+        let found = recognise(&g, &roles, WALLS, &limits(false), 1e-3);
+        assert_eq!(found.len(), usize::from(hole), "{past} past: {found:?}");
+    }
+}
+
+#[test]
 fn a_protrusion_behind_a_concave_loop_is_a_boss() {
     let side = Surface::Cylinder { origin: DVec3::new(23.0, 23.0, 0.0), axis: DVec3::Z, radius: 3.0, convex: true };
     let (g, roles) =

@@ -8,9 +8,10 @@ from typing import Any
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_Copy, BRepBuilderAPI_MakeEdge
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.BRepAdaptor import BRepAdaptor_Curve2d
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
+from OCP.GeomAbs import GeomAbs_Cylinder
 from OCP.BRepTools import BRepTools
-from OCP.gp import gp_Dir2d, gp_Pnt2d, gp_Vec2d
+from OCP.gp import gp_Cylinder, gp_Dir2d, gp_Lin, gp_Pnt, gp_Pnt2d, gp_Vec, gp_Vec2d
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
@@ -20,7 +21,7 @@ from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
 from ..geom.topology import (
-    IndexedShapeMap, bounds_face, edge_uses, face_wires, indexed_map, invalid_faces, subshapes,
+    IndexedShapeMap, bounds_face, edge_uses, face_props, face_wires, indexed_map, invalid_faces, subshapes,
 )
 from ..geom.uv_lines import line_within
 from ..protocol.errors import KernelError
@@ -37,9 +38,13 @@ def make_shells(
     the shells written: a listed shell whose faces are joined only through INTERNAL edges is written as one
     shell per connected group (_edge_connected).
     """
-    pieces = _pieces(face_map, [i for face_ids in shells for i in face_ids], fuzzy)
+    listed = [i for face_ids in shells for i in face_ids]
+    pieces, cut_inside = _pieces(face_map, listed, fuzzy, merge or [])
     if merge:
-        _merge(pieces, merge, fuzzy)
+        # Faces cut along a joint inside them stay in pieces: merged, the cut would be gone again.
+        merge = [g for g in merge if not any(i in cut_inside and len(pieces[i]) > 1 for i in g)]
+        closed = {i for i in listed if len(pieces[i]) > 1 and closing_isolines([face_map.FindKey(i + 1)])}
+        _merge(pieces, merge, fuzzy, closed=closed)
     builder = BRep_Builder()
     compound = TopoDS_Compound()
     builder.MakeCompound(compound)
@@ -83,18 +88,25 @@ def _edge_uses(compound: TopoDS_Compound) -> dict[str, int]:
 
 
 def _merge(
-    pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], fuzzy: float, around: list[list[int]] | None = None
+    pieces: dict[int, list[TopoDS_Shape]],
+    groups: list[list[int]],
+    fuzzy: float,
+    around: list[list[int]] | None = None,
+    closed: set[int] | None = None,
 ) -> None:
     """The faces of each of `groups` (one patch's, joined only to each other) made one face where they lie on
     one surface; the group's first face id stands for the merged face, the others for none. All the faces are
     unified at once, every edge but those inside a group kept (ShapeUpgrade_UnifySameDomain, faces only), so
     a face whose edge is rebuilt is rebuilt with it and the shells' sharing holds (merging a group on its own
-    left its neighbours on edges the merged face no longer had: gaps once written). Groups holding a face split
-    at its seam are left out (merging would close the face on itself again); nothing changes when the
-    unification fails or gives faces that cannot be traced back. The groups of `around` merge only across the
-    edges that do not run along the way round their surface (`_keep_along_turn`): a tube's pieces merge with its
-    bands (a joint's strip down into a floor) into one face per sector, not left as slivers of their own."""
-    groups = [g for g in groups if all(len(pieces[i]) == 1 for i in g)]
+    left its neighbours on edges the merged face no longer had: gaps once written). Nothing changes when the
+    unification fails or gives faces that cannot be traced back. The groups of `around`, and those holding a face
+    split at its seam (merged whole, they would close the face on itself again), merge only across the edges that
+    do not run along the way round their surface (`_keep_along_turn`): a tube's pieces merge with its bands (a
+    joint's strip down into a floor) into one face per sector, not left as slivers of their own."""
+    first, closed = around is None, closed or set()
+    # A group holding a face closed on itself (written in pieces at its seam) must not close it again.
+    seamed = [g for g in groups if any(i in closed for i in g)]
+    around = (around or []) + [g for g in seamed if g not in (around or [])]
     if not groups:
         return
     builder, compound, keep = BRep_Builder(), TopoDS_Compound(), ShapeMap()
@@ -115,7 +127,10 @@ def _merge(
             copies.Next()
     inner = _group_edges(pieces, groups)
     if around:
-        _keep_along_turn(inner, pieces, [g for g in groups if g in around])
+        cuts = {tuple(g): _seam_cuts([f for i in g if i in closed for f in pieces[i]]) for g in seamed}
+        _keep_along_turn(inner, pieces, [g for g in groups if g in around], cuts)
+        for g in seamed:
+            _one_band_per_half(inner, pieces, g, closed)
     for faces in pieces.values():
         for face in faces:
             explorer = TopExp_Explorer(face, TopAbs_EDGE)
@@ -176,10 +191,10 @@ def _merge(
         return bool(closing_isolines(made))
 
     failing = [g for g in groups if failed(g)]
-    if failing and around is None:
-        _merge(given, groups, fuzzy, failing)
+    if failing and first:
+        _merge(given, groups, fuzzy, failing, closed)
     elif failing:
-        _merge(given, [g for g in groups if g not in failing], fuzzy, [])
+        _merge(given, [g for g in groups if g not in failing], fuzzy, [], closed)
     else:
         given.update(merged)
 
@@ -202,11 +217,19 @@ def _made(faces: list[TopoDS_Shape], originals: ShapeMap) -> list[TopoDS_Shape]:
     return [f for f in faces if not originals.Contains(f)]
 
 
-def _keep_along_turn(inner: ShapeMap, pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]]) -> None:
+def _keep_along_turn(
+    inner: ShapeMap,
+    pieces: dict[int, list[TopoDS_Shape]],
+    groups: list[list[int]],
+    cuts: dict[tuple[int, ...], tuple[gp_Cylinder, list[gp_Pnt]] | None],
+) -> None:
     """Takes out of `inner` (the edges a merge may remove) the edges between faces of `groups` that are isolines
     along which their surface closes (a tube's edges along its axis): kept, they stop the merged faces going all
-    the way round."""
+    the way round. Of a group whose tube skin was split at its seam and halfway round (`cuts`: the skin's
+    cylinder and a point on each of the two lines), only the isolines along those two lines: a band cut there too
+    merges with the half beside it across the band's other isolines (a joint's line down the band)."""
     for g in groups:
+        cut = cuts.get(tuple(g))
         for i in g:
             for shape in pieces[i]:
                 face = TopoDS.Face(shape)
@@ -215,7 +238,68 @@ def _keep_along_turn(inner: ShapeMap, pieces: dict[int, list[TopoDS_Shape]], gro
                 v_closed = surface.IsVPeriodic() or surface.IsVClosed()
                 for edge in subshapes(face, TopAbs_EDGE):
                     if inner.Contains(edge) and _isoline(TopoDS.Edge(edge), face, u_closed, v_closed):
-                        inner.Remove(edge)
+                        if cut is None or _along_cut(TopoDS.Edge(edge), *cut):
+                            inner.Remove(edge)
+
+
+def _one_band_per_half(
+    inner: ShapeMap, pieces: dict[int, list[TopoDS_Shape]], group: list[int], closed: set[int]
+) -> None:
+    """Of the bands that a half of a tube skin (a piece of a face `closed` on itself, split at its seam) would
+    merge with across
+    `inner` edges, only the largest when two of them meet along an edge that stays (a joint's line down the
+    band, shared with another patch): the three would make one face with that edge hanging inside it, which the
+    merge gives up, leaving all three apart. The others keep their edges to the half."""
+    halves = [f for i in group if i in closed for f in pieces[i]]
+    edges_of = {}
+    for face in (f for i in group for f in pieces[i]):
+        found = ShapeMap()
+        for edge in subshapes(face, TopAbs_EDGE):
+            found.Add(edge)
+        edges_of[id(face)] = (face, found)
+    for half in halves:
+        half_edges = [e for e in subshapes(half, TopAbs_EDGE) if inner.Contains(e)]
+        beside = []
+        for face, found in edges_of.values():
+            if face.IsSame(half):
+                continue
+            shared = [e for e in half_edges if found.Contains(e)]
+            if shared:
+                beside.append((face_props(face).Mass(), face, shared))
+        if len(beside) < 2:
+            continue
+        beside.sort(key=lambda b: -b[0])
+        for _, face, shared in beside[1:]:
+            stays = [e for e in subshapes(face, TopAbs_EDGE) if not inner.Contains(e)]
+            meets = any(edges_of[id(other)][1].Contains(e) for _, other, _ in beside if other is not face for e in stays)
+            if meets:
+                for e in shared:
+                    inner.Remove(e)
+
+
+def _seam_cuts(halves: list[TopoDS_Shape]) -> tuple[gp_Cylinder, list[gp_Pnt]] | None:
+    """The cylinder of a tube skin split at its seam and halfway round (`halves`, its pieces) and a point on each
+    of the two lines, from the halves' own isolines; None when the skin is no cylinder."""
+    cylinder, points = None, []
+    for shape in halves:
+        face = TopoDS.Face(shape)
+        adaptor = BRepAdaptor_Surface(face, False)
+        if adaptor.GetType() != GeomAbs_Cylinder:
+            return None
+        cylinder = cylinder or adaptor.Cylinder()
+        for edge in subshapes(face, TopAbs_EDGE):
+            if _isoline(TopoDS.Edge(edge), face, True, False):
+                curve = BRepAdaptor_Curve(TopoDS.Edge(edge))
+                points.append(curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter())))
+    return (cylinder, points) if cylinder is not None and points else None
+
+
+def _along_cut(edge: TopoDS_Edge, cylinder: gp_Cylinder, points: list[gp_Pnt]) -> bool:
+    """Whether the (axial) `edge` runs along the line of `cylinder` through one of `points`."""
+    curve = BRepAdaptor_Curve(edge)
+    middle = curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter()))
+    direction = cylinder.Axis().Direction()
+    return any(gp_Lin(p, direction).Distance(middle) <= CONFUSION for p in points)
 
 
 def _isoline(edge: TopoDS_Edge, face: TopoDS_Face, u: bool, v: bool) -> bool:
@@ -252,15 +336,21 @@ def _group_edges(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]])
     return inner
 
 
-def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dict[int, list[TopoDS_Shape]]:
-    """The faces standing for each listed face: its pieces when split, else itself. The faces closed on
-    themselves are split at their seams and the faces holding a joint inside them along it (inside_cuts), with
-    all the listed faces at once, so the edges they share split alike (a neighbour whose shared edge was split is
-    rebuilt, Modified). The joints' cuts are given up when a piece they make fails BRepCheck (a broken face is
-    worse than a joint left open); nothing is split when OCCT gives up (the seams stay)."""
+def _pieces(
+    face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float, groups: list[list[int]]
+) -> tuple[dict[int, list[TopoDS_Shape]], set[int]]:
+    """The faces standing for each listed face: its pieces when split, else itself; and the faces cut along a
+    joint inside them. The faces closed on themselves are split at their seams (and the other faces of their
+    `groups` on the same cylinder at the same angles, `_seams_carried`) and the faces holding a joint inside them
+    along it (inside_cuts), with all the listed faces at once, so the edges they share split alike (a neighbour
+    whose shared edge was split is rebuilt, Modified). The joints' cuts are given up when a piece they make fails
+    BRepCheck (a broken face is worse than a joint left open); nothing is split when OCCT gives up (the seams
+    stay)."""
     unsplit = {i: [face_map.FindKey(i + 1)] for i in face_ids}
     listed = [faces[0] for faces in unsplit.values()]
     seams = closing_isolines(listed)
+    for group in groups:
+        seams.extend(_seams_carried([unsplit[i][0] for i in group if i in unsplit], max(fuzzy, CONFUSION)))
     cuts = {i: inside_cuts(faces[0]) for i, faces in unsplit.items()}
     # At most two tries with cuts: all of them, then without those of the faces whose pieces came out broken.
     for _ in range(2):
@@ -272,13 +362,13 @@ def _pieces(face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float) -> dic
             break
         broken = {i for i, faces in pieces.items() if not all(BRepCheck_Analyzer(f).IsValid() for f in faces)}
         if not broken:
-            return pieces
+            return pieces, {i for i, c in cuts.items() if c}
         if not any(cuts[i] for i in broken if i in cuts):
             break  # the broken faces had no cuts of their own: the same split again would break them again
         cuts = {i: c for i, c in cuts.items() if i not in broken}
     if not seams:
-        return unsplit
-    return _split_pieces(unsplit, seams, fuzzy) or unsplit
+        return unsplit, set()
+    return _split_pieces(unsplit, seams, fuzzy) or unsplit, set()
 
 
 def _split_pieces(
@@ -363,6 +453,59 @@ def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
             if maker.IsDone():
                 tools.extend(within(maker.Edge(), face))
     return tools
+
+
+def _seams_carried(faces: list[TopoDS_Shape], tolerance: float) -> list[TopoDS_Shape]:
+    """A tube's skin closed on itself is split at its seam and halfway round (`closing_isolines`); the other
+    faces of its patch on the same cylinder (its bands: a joint's strip down into a floor, a gap's band) are cut
+    at the same two angles, so that each merges with the half beside it into one face per sector (`_merge`);
+    a band spanning the angle between two halves merges with neither, a face of its own. Returns the cuts,
+    each an isoline of the closed skin's own surface over the band's height, clipped to the band."""
+    tools = []
+    for shape in faces:
+        skin = TopoDS.Face(shape)
+        adaptor = BRepAdaptor_Surface(skin, False)
+        if adaptor.GetType() != GeomAbs_Cylinder:
+            continue
+        surface = BRep_Tool.Surface_s(skin)
+        u0, u1, _, _ = BRepTools.UVBounds_s(skin)
+        if u1 - u0 < surface.UPeriod() * (1 - FULL_TURN):
+            continue
+        cylinder = adaptor.Cylinder()
+        for other in faces:
+            band = TopoDS.Face(other)
+            if band.IsSame(skin) or not _on_cylinder(band, cylinder, tolerance):
+                continue
+            heights = [_height(cylinder, vertex) for vertex in subshapes(band, TopAbs_VERTEX)]
+            if not heights:
+                continue
+            low, high = min(heights), max(heights)
+            for u in (u0, 0.5 * (u0 + u1)):
+                maker = BRepBuilderAPI_MakeEdge(surface.UIso(u), low - CONFUSION, high + CONFUSION)
+                if maker.IsDone():
+                    tools.extend(within(maker.Edge(), band))
+    return tools
+
+
+def _height(cylinder: gp_Cylinder, vertex: TopoDS_Shape) -> float:
+    """The cylinder's v parameter at `vertex`: its height along the axis from the frame's origin."""
+    point, frame = BRep_Tool.Pnt_s(TopoDS.Vertex(vertex)), cylinder.Position()
+    return gp_Vec(frame.Location(), point).Dot(gp_Vec(frame.Direction()))
+
+
+def _on_cylinder(face: TopoDS_Face, cylinder: gp_Cylinder, tolerance: float) -> bool:
+    """Whether `face` lies on `cylinder` (a cylinder of the same axis and radius within `tolerance`, whatever its
+    frame)."""
+    adaptor = BRepAdaptor_Surface(face, False)
+    if adaptor.GetType() != GeomAbs_Cylinder:
+        return False
+    other = adaptor.Cylinder()
+    axis, own = cylinder.Axis(), other.Axis()
+    return (
+        abs(other.Radius() - cylinder.Radius()) <= tolerance
+        and axis.IsParallel(own, SAME_DOMAIN_ANGLE)
+        and gp_Lin(axis).Distance(own.Location()) <= tolerance
+    )
 
 
 def _edge_connected(faces: list[TopoDS_Shape]) -> list[list[TopoDS_Shape]]:
