@@ -246,10 +246,9 @@ def _one_band_per_half(
     inner: ShapeMap, pieces: dict[int, list[TopoDS_Shape]], group: list[int], closed: set[int]
 ) -> None:
     """Of the bands that a half of a tube skin (a piece of a face `closed` on itself, split at its seam) would
-    merge with across
-    `inner` edges, only the largest when two of them meet along an edge that stays (a joint's line down the
-    band, shared with another patch): the three would make one face with that edge hanging inside it, which the
-    merge gives up, leaving all three apart. The others keep their edges to the half."""
+    merge with across `inner` edges, only the largest when two of them meet along an edge that stays (a joint's
+    line down the band, shared with another patch): the three would make one face with that edge hanging inside
+    it, which the merge gives up, leaving all three apart. The others keep their edges to the half."""
     halves = [f for i in group if i in closed for f in pieces[i]]
     edges_of = {}
     for face in (f for i in group for f in pieces[i]):
