@@ -26,7 +26,7 @@ use std::collections::BTreeSet;
 use glam::DVec3;
 use serde::Serialize;
 
-use crate::model::face_graph::{Convexity, EdgeId, FaceGraph, FaceId, Surface};
+use crate::model::face_graph::{Convexity, EdgeId, Face, FaceGraph, FaceId, Surface};
 use crate::pairing::{FaceRole, Side};
 
 /// Size limits of the features to suppress, in mm.
@@ -160,12 +160,8 @@ fn stands_clear(
     thickness: &[f64],
     region: &BTreeSet<FaceId>,
 ) -> bool {
-    let skin = &graph.faces[base];
-    let (Surface::Plane { .. }, FaceRole::Pair { group, .. }) = (&skin.surface, &roles[base]) else {
-        return true;
-    };
-    let height = region.iter().map(|&f| graph.reach(f, skin.point, skin.normal)).fold(0.0, f64::max);
-    height >= thickness[*group]
+    let Some((skin, wall)) = planar_skin(graph, base, roles, thickness) else { return true };
+    region_reach(graph, region, skin, skin.normal) >= wall
 }
 
 /// The bore `region` behind a loop of the planar skin `base` runs on past the skin's wall at least as far
@@ -174,12 +170,27 @@ fn stands_clear(
 /// mid-patch, not a hole in the wall. A shorter bore (a hole through the wall, countersunk or with a low collar
 /// round it) is the wall's hole. A curved skin has no plane to measure from: its bores are its holes.
 fn runs_on(graph: &FaceGraph, base: FaceId, roles: &[FaceRole], thickness: &[f64], region: &BTreeSet<FaceId>) -> bool {
+    let Some((skin, wall)) = planar_skin(graph, base, roles, thickness) else { return false };
+    region_reach(graph, region, skin, skin.normal) + region_reach(graph, region, skin, -skin.normal) >= 2.0 * wall
+}
+
+/// `base` and its wall's thickness when it is a planar skin of a wall.
+fn planar_skin<'a>(
+    graph: &'a FaceGraph,
+    base: FaceId,
+    roles: &[FaceRole],
+    thickness: &[f64],
+) -> Option<(&'a Face, f64)> {
     let skin = &graph.faces[base];
-    let (Surface::Plane { .. }, FaceRole::Pair { group, .. }) = (&skin.surface, &roles[base]) else {
-        return false;
-    };
-    let reach = |normal: DVec3| region.iter().map(|&f| graph.reach(f, skin.point, normal)).fold(0.0, f64::max);
-    reach(skin.normal) + reach(-skin.normal) >= 2.0 * thickness[*group]
+    match (&skin.surface, &roles[base]) {
+        (Surface::Plane { .. }, FaceRole::Pair { group, .. }) => Some((skin, thickness[*group])),
+        _ => None,
+    }
+}
+
+/// How far the faces of `region` reach from the plane of `skin` along `normal` (0 at least).
+fn region_reach(graph: &FaceGraph, region: &BTreeSet<FaceId>, skin: &Face, normal: DVec3) -> f64 {
+    region.iter().map(|&f| graph.reach(f, skin.point, normal)).fold(0.0, f64::max)
 }
 
 fn diagonal(graph: &FaceGraph, faces: &BTreeSet<FaceId>) -> f64 {

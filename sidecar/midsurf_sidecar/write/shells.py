@@ -38,13 +38,11 @@ def make_shells(
     the shells written: a listed shell whose faces are joined only through INTERNAL edges is written as one
     shell per connected group (_edge_connected).
     """
-    listed = [i for face_ids in shells for i in face_ids]
-    pieces, cut_inside = _pieces(face_map, listed, fuzzy, merge or [])
+    pieces, cut_inside, closed = _pieces(face_map, [i for face_ids in shells for i in face_ids], fuzzy, merge or [])
     if merge:
         # Faces cut along a joint inside them stay in pieces: merged, the cut would be gone again.
         merge = [g for g in merge if not any(i in cut_inside and len(pieces[i]) > 1 for i in g)]
-        closed = {i for i in listed if len(pieces[i]) > 1 and closing_isolines([face_map.FindKey(i + 1)])}
-        _merge(pieces, merge, fuzzy, closed=closed)
+        _merge(pieces, merge, fuzzy, closed={i for i in closed if len(pieces[i]) > 1})
     builder = BRep_Builder()
     compound = TopoDS_Compound()
     builder.MakeCompound(compound)
@@ -337,19 +335,21 @@ def _group_edges(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]])
 
 def _pieces(
     face_map: IndexedShapeMap, face_ids: list[int], fuzzy: float, groups: list[list[int]]
-) -> tuple[dict[int, list[TopoDS_Shape]], set[int]]:
-    """The faces standing for each listed face: its pieces when split, else itself; and the faces cut along a
-    joint inside them. The faces closed on themselves are split at their seams (and the other faces of their
+) -> tuple[dict[int, list[TopoDS_Shape]], set[int], set[int]]:
+    """The faces standing for each listed face: its pieces when split, else itself; the faces cut along a joint
+    inside them; and the faces closed on themselves. The faces closed on themselves are split at their seams (and the other faces of their
     `groups` on the same cylinder at the same angles, `_seams_carried`) and the faces holding a joint inside them
     along it (inside_cuts), with all the listed faces at once, so the edges they share split alike (a neighbour
     whose shared edge was split is rebuilt, Modified). The joints' cuts are given up when a piece they make fails
     BRepCheck (a broken face is worse than a joint left open); nothing is split when OCCT gives up (the seams
     stay)."""
     unsplit = {i: [face_map.FindKey(i + 1)] for i in face_ids}
-    listed = [faces[0] for faces in unsplit.values()]
-    seams = closing_isolines(listed)
+    own_seams = {i: closing_isolines(faces) for i, faces in unsplit.items()}
+    closed = {i for i, tools in own_seams.items() if tools}
+    seams = [tool for tools in own_seams.values() for tool in tools]
     for group in groups:
-        seams.extend(_seams_carried([unsplit[i][0] for i in group if i in unsplit], max(fuzzy, CONFUSION)))
+        skins = [unsplit[i][0] for i in group if i in closed]
+        seams.extend(_seams_carried(skins, [unsplit[i][0] for i in group if i in unsplit], max(fuzzy, CONFUSION)))
     cuts = {i: inside_cuts(faces[0]) for i, faces in unsplit.items()}
     # At most two tries with cuts: all of them, then without those of the faces whose pieces came out broken.
     for _ in range(2):
@@ -361,13 +361,13 @@ def _pieces(
             break
         broken = {i for i, faces in pieces.items() if not all(BRepCheck_Analyzer(f).IsValid() for f in faces)}
         if not broken:
-            return pieces, {i for i, c in cuts.items() if c}
+            return pieces, {i for i, c in cuts.items() if c}, closed
         if not any(cuts[i] for i in broken if i in cuts):
             break  # the broken faces had no cuts of their own: the same split again would break them again
         cuts = {i: c for i, c in cuts.items() if i not in broken}
     if not seams:
-        return unsplit, set()
-    return _split_pieces(unsplit, seams, fuzzy) or unsplit, set()
+        return unsplit, set(), closed
+    return _split_pieces(unsplit, seams, fuzzy) or unsplit, set(), closed
 
 
 def _split_pieces(
@@ -454,22 +454,20 @@ def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
     return tools
 
 
-def _seams_carried(faces: list[TopoDS_Shape], tolerance: float) -> list[TopoDS_Shape]:
-    """A tube's skin closed on itself is split at its seam and halfway round (`closing_isolines`); the other
-    faces of its patch on the same cylinder (its bands: a joint's strip down into a floor, a gap's band) are cut
+def _seams_carried(skins: list[TopoDS_Shape], faces: list[TopoDS_Shape], tolerance: float) -> list[TopoDS_Shape]:
+    """A tube's skin closed on itself (of `skins`) is split at its seam and halfway round (`closing_isolines`);
+    the other `faces` of its patch on the same cylinder (its bands: a joint's strip down into a floor, a gap's band) are cut
     at the same two angles, so that each merges with the half beside it into one face per sector (`_merge`);
     a band spanning the angle between two halves merges with neither, a face of its own. Returns the cuts,
     each an isoline of the closed skin's own surface over the band's height, clipped to the band."""
     tools = []
-    for shape in faces:
+    for shape in skins:
         skin = TopoDS.Face(shape)
         adaptor = BRepAdaptor_Surface(skin, False)
         if adaptor.GetType() != GeomAbs_Cylinder:
             continue
         surface = BRep_Tool.Surface_s(skin)
         u0, u1, _, _ = BRepTools.UVBounds_s(skin)
-        if u1 - u0 < surface.UPeriod() * (1 - FULL_TURN):
-            continue
         cylinder = adaptor.Cylinder()
         for other in faces:
             band = TopoDS.Face(other)
