@@ -358,6 +358,36 @@ def test_a_whole_tube_merges_with_its_foot_half_by_half_across_a_joint_line_down
                                                  half + 10.0 * math.pi * 3.0))
 
 
+@pytest.mark.parametrize("flange", [False, True])
+def test_a_tube_sector_in_pieces_on_surfaces_seamed_apart_merges_into_one_face(client, flange):
+    # A boss's mid-cylinder crossed by a rib off its axis: the sector on one side of the rib's mid-plane comes in
+    # pieces, the arc offset from the skin (its surface's seam at angle 0 inside it) and the strips either side
+    # down to the rib's mid-plane, each on a surface of its own (one with its axis the other way). Merged, they
+    # are one face: laid on one surface whose seam runs outside them all (before, the arc stayed apart: the merge
+    # gives up across a seam). With a flat flange running on from one side in the same set (a bend's plane), the
+    # curved pieces still make one face, the flange another.
+    def piece(a, b, flip=False):
+        frame = gp_Ax3(gp_Pnt(0, 0, 0), gp.DZ_s(), gp.DX_s()).Rotated(gp.OZ_s(), a)
+        if flip:
+            frame = gp_Ax3(gp_Pnt(0, 0, 0), gp.DZ_s().Reversed(), gp.DX_s()).Rotated(gp.OZ_s(), a)
+            return BRepBuilderAPI_MakeFace(gp_Cylinder(frame, 5.0), -(b - a), 0.0, -20.0, 0.0).Face()
+        return BRepBuilderAPI_MakeFace(gp_Cylinder(frame, 5.0), 0.0, b - a, 0.0, 20.0).Face()
+
+    arc = piece(-0.1, 3.0)
+    strips = [piece(-0.5, -0.1, flip=True), piece(3.0, 3.4)]
+    edge = (5.0 * math.cos(3.4), 5.0 * math.sin(3.4))
+    along = (edge[0] - 10.0 * math.sin(3.4), edge[1] + 10.0 * math.cos(3.4))
+    flat = [rectangle((*edge, 0), (*along, 0), (*along, 20), (*edge, 20))] if flange else []
+    f = fused(client, arc, *strips, *flat)
+    every = list(range(len(f["faces"])))
+    assert len(every) == 3 + len(flat)
+    ok = client.ok("make_shells", handle=f["handle"], fuzzy=1e-6, shells=[every], merge=[every])
+    made = client.session.store.get(ok["handle"])
+    assert ok["valid"] is True and len(ok["faces"]) == 1 + len(flat)
+    areas = sorted(round(a, 6) for a in face_areas(made))
+    assert areas == sorted([round(5.0 * 3.9 * 20.0, 6)] + [200.0] * len(flat))
+
+
 class RecordingMerger:
     """Stands in for ShapeUpgrade_UnifySameDomain: records the shape it is given, then fails to build."""
 

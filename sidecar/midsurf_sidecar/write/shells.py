@@ -21,9 +21,10 @@ from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
 from ..geom.topology import (
-    IndexedShapeMap, bounds_face, edge_uses, face_props, face_wires, indexed_map, invalid_faces, subshapes,
+    IndexedShapeMap, bounds_face, compound_of, edge_uses, face_props, face_wires, indexed_map, invalid_faces, subshapes,
 )
 from ..geom.uv_lines import line_within
+from .reseat import on_cylinder, reseat_set
 from ..protocol.errors import KernelError
 
 
@@ -123,6 +124,8 @@ def _merge(
         for _ in faces:
             pieces[i].append(copies.Value())
             copies.Next()
+    if _reseated(pieces, groups, max(fuzzy, CONFUSION)):
+        compound = compound_of([face for faces in pieces.values() for face in faces])
     inner = _group_edges(pieces, groups)
     if around:
         cuts = {tuple(g): _seam_cuts([f for i in g if i in closed for f in pieces[i]]) for g in seamed}
@@ -195,6 +198,21 @@ def _merge(
         _merge(given, [g for g in groups if g not in failing], fuzzy, [], closed)
     else:
         given.update(merged)
+
+
+def _reseated(pieces: dict[int, list[TopoDS_Shape]], groups: list[list[int]], tolerance: float) -> bool:
+    """Lays the faces of each group that lie on one cylinder or cone on one copy of it whose seam runs outside them
+    (`reseat_set`), in `pieces`; whether any was."""
+    changed = False
+    for g in groups:
+        faces = [face for i in g for face in pieces[i]]
+        laid = reseat_set(faces, tolerance) if len(faces) > 1 else None
+        if laid is None:
+            continue
+        changed = True
+        for i in g:
+            pieces[i], laid = laid[: len(pieces[i])], laid[len(pieces[i]) :]
+    return changed
 
 
 def _wires_touch(face: TopoDS_Shape) -> bool:
@@ -471,7 +489,7 @@ def _seams_carried(skins: list[TopoDS_Shape], faces: list[TopoDS_Shape], toleran
         cylinder = adaptor.Cylinder()
         for other in faces:
             band = TopoDS.Face(other)
-            if band.IsSame(skin) or not _on_cylinder(band, cylinder, tolerance):
+            if band.IsSame(skin) or not on_cylinder(band, cylinder, tolerance):
                 continue
             heights = [_height(cylinder, vertex) for vertex in subshapes(band, TopAbs_VERTEX)]
             if not heights:
@@ -488,21 +506,6 @@ def _height(cylinder: gp_Cylinder, vertex: TopoDS_Shape) -> float:
     """The cylinder's v parameter at `vertex`: its height along the axis from the frame's origin."""
     point, frame = BRep_Tool.Pnt_s(TopoDS.Vertex(vertex)), cylinder.Position()
     return gp_Vec(frame.Location(), point).Dot(gp_Vec(frame.Direction()))
-
-
-def _on_cylinder(face: TopoDS_Face, cylinder: gp_Cylinder, tolerance: float) -> bool:
-    """Whether `face` lies on `cylinder` (a cylinder of the same axis and radius within `tolerance`, whatever its
-    frame)."""
-    adaptor = BRepAdaptor_Surface(face, False)
-    if adaptor.GetType() != GeomAbs_Cylinder:
-        return False
-    other = adaptor.Cylinder()
-    axis, own = cylinder.Axis(), other.Axis()
-    return (
-        abs(other.Radius() - cylinder.Radius()) <= tolerance
-        and axis.IsParallel(own, SAME_DOMAIN_ANGLE)
-        and gp_Lin(axis).Distance(own.Location()) <= tolerance
-    )
 
 
 def _edge_connected(faces: list[TopoDS_Shape]) -> list[list[TopoDS_Shape]]:
