@@ -1035,9 +1035,8 @@ def bosses_merged_rings() -> Fixture:
     3..9.5) on the axes (-30, -3.54) and (-30, 3.54): their rings overlap (axes 7.08 apart, mid-cylinders R 3.75
     crossing at x = -30 -+ 1.24 on y = 0). The class: two bosses side by side whose rings merge (moulded
     housings). Each boss's outside stops where the other's begins, so each mid-cylinder has a gap inside the
-    other's wall, closed by a band of its own cylinder; its foot grows down into the plate. Not met yet: the
-    band stops at the plate's top and its notch down to the plate's mid-plane stays open (11.6 mm of gap;
-    growing the band down with the foot's strips closes it here, but on other parts opened more than it closed).
+    other's wall, closed by a band of its own cylinder; its foot grows down into the plate. The band stops at
+    the plate's top: the notch under it, between the foot's ends, is closed by a band in the partners pass.
     Faces: 13. Volume: the built solid's.
     """
     part = box(-50, -30, 0, 100, 60, 3) + cylinder_z(-30, -3.54, 3, 5.25, 6.5) + cylinder_z(-30, 3.54, 3, 5.25, 6.5)

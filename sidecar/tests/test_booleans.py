@@ -1,12 +1,14 @@
 """The shared boolean calls: a split that does not keep its faces' area is refused; merging a patch's faces
 leaves the faces it was given as they were."""
 
+import math
+
 import pytest
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_NurbsConvert
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeSphere
 from OCP.Geom import Geom_OffsetSurface
-from OCP.gp import gp_Dir, gp_Pln, gp_Pnt
+from OCP.gp import gp_Ax3, gp_Cylinder, gp_Dir, gp_Pln, gp_Pnt
 from OCP.TopAbs import TopAbs_COMPOUND, TopAbs_FACE, TopAbs_WIRE
 from OCP.TopoDS import TopoDS
 
@@ -144,6 +146,30 @@ def test_a_merge_that_breaks_a_face_is_dropped_for_the_faces_only_joined(monkeyp
     faces = [horizontal(), vertical(30)]
     joined = subshapes(unify(faces, 1e-6), TopAbs_FACE)
     assert len(joined) == 4 and all(surface_props(f).Mass() > 0 for f in joined)
+
+
+@pytest.mark.parametrize("gap", [0.0, 0.2])
+def test_pieces_that_would_merge_into_a_ring_are_only_joined(gap):
+    # A tube's arc (three quarters round) and the band that closes its gap (the last quarter, less `gap`): merged,
+    # they would be one face all the way round its cylinder, which the next fuse broke; they stay two faces,
+    # joined along their shared line. With a gap left between them, they merge into one face.
+    cylinder = gp_Cylinder(gp_Ax3(), 10.0)
+    arc = BRepBuilderAPI_MakeFace(cylinder, 0.0, 1.5 * math.pi, 0.0, 5.0).Face()
+    band = BRepBuilderAPI_MakeFace(cylinder, 1.5 * math.pi, 2.0 * math.pi - gap, 0.0, 5.0).Face()
+    faces = subshapes(unify([arc, band], 1e-6), TopAbs_FACE)
+    assert len(faces) == (2 if gap == 0.0 else 1)
+    area = sum(surface_props(f).Mass() for f in faces)
+    assert area == pytest.approx(10.0 * (2.0 * math.pi - gap) * 5.0)
+
+
+def test_a_whole_tube_and_its_foot_still_merge_into_one_ring():
+    # A tube that was whole before (its mid-cylinder all the way round) and the foot grown from its edge.
+    cylinder = gp_Cylinder(gp_Ax3(), 10.0)
+    tube = BRepBuilderAPI_MakeFace(cylinder, 0.0, 2.0 * math.pi, 2.0, 5.0).Face()
+    foot = BRepBuilderAPI_MakeFace(cylinder, 0.0, 2.0 * math.pi, 0.0, 2.0).Face()
+    faces = subshapes(unify([tube, foot], 1e-6), TopAbs_FACE)
+    assert len(faces) == 1
+    assert surface_props(faces[0]).Mass() == pytest.approx(10.0 * 2.0 * math.pi * 5.0)
 
 
 def test_fuse_arguments_are_a_face_alone_a_compound_for_a_group_and_loose_faces_below_two():

@@ -146,7 +146,7 @@ pub(super) fn grow<K: Kernel>(
         grows.push(grow);
     }
     let Steps { quads: steps, corners: step_corners, swept, bridged } =
-        step_quads(fused, &open_edges, patches, solids, pass == Pass::Joints, fuzzy, tally);
+        step_quads(fused, &open_edges, patches, solids, fuzzy, tally);
     let planned: Vec<Planned> =
         grows.into_iter().enumerate().filter(|(k, _)| !bridged.contains(k)).filter_map(|(_, g)| g).collect();
     if pass != Pass::Joints && planned.is_empty() && steps.is_empty() && swept.is_empty() {
@@ -275,8 +275,8 @@ struct Steps {
     bridged: BTreeSet<usize>,
 }
 
-/// The quads bridging open edges across thickness steps (`bridge::step_bridges`) and, with `gaps` (the first
-/// pass), across gaps in a tube's own surface (`bridge::ruling_gaps`), each owned by its `owner` edge's patch,
+/// The quads bridging open edges across thickness steps (`bridge::step_bridges`) and across gaps in a tube's own
+/// surface (`bridge::ruling_gaps`), each owned by its `owner` edge's patch,
 /// with its joint key and the lengths of both edges; the quads filling the notches where two step bridges of
 /// one patch meet at a corner (`bridge::bridge_corners`, those whose middle lies in the material), by patch;
 /// the edges left swept onto the other level of a step whose two edges are one curve (`bridge::swept_steps`);
@@ -287,7 +287,6 @@ fn step_quads(
     open: &[OpenEdge],
     patches: &[PatchInfo],
     solids: &[SolidMesh],
-    gaps: bool,
     fuzzy: f64,
     tally: &mut JointTally,
 ) -> Steps {
@@ -331,8 +330,9 @@ fn step_quads(
         let lengths = [open[owner].length, open[other].length];
         out.push((edges[owner].patch, request, (ids, joint::JointKind::Step.name(), "extended"), lengths));
     }
-    let gaps = if gaps { bridge::ruling_gaps(&edges) } else { Vec::new() };
-    for bridge::StepBridge { owner, other, quad, normal, axis } in gaps {
+    // In the partners pass too: a gap's band stops where the skins beside it do, and the foot grown from their
+    // edges down into a floor leaves a notch under the band between the foot's ends, rulings of the same tube.
+    for bridge::StepBridge { owner, other, quad, normal, axis } in bridge::ruling_gaps(&edges) {
         if bridged[owner] || bridged[other] {
             continue;
         }

@@ -12,12 +12,12 @@ from OCP.collections import List_TopoDS_Shape
 from OCP.Message import Message_Fail
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
-from OCP.TopoDS import TopoDS_Shape
+from OCP.TopoDS import TopoDS, TopoDS_Shape
 
 from ..constants import AREA_KEPT_SHARE, CONFUSION, SAME_DOMAIN_ANGLE
 from ..protocol.errors import KernelError, one_line
 from .pole_offset import on_pole_offset
-from .topology import boundary_length, compound_of, face_props, indexed_map, subshapes
+from .topology import boundary_length, compound_of, face_props, full_turns, indexed_map, subshapes
 
 # MIDSURF_SERIAL_BOOLEANS=1 runs every boolean on one thread.
 SERIAL_VAR = "MIDSURF_SERIAL_BOOLEANS"
@@ -121,8 +121,8 @@ def unify(faces: list[TopoDS_Shape], fuzzy: float) -> TopoDS_Shape:
     own. UnifySameDomain edits the shape it is given (it re-fits pcurves on periodic surfaces), and the joined
     faces include the very faces of the stitched patches that touch nothing (the fuse keeps those as they are):
     it gets a copy. When a merged face comes out broken (BRepCheck fails, or its wires turn inside out and its
-    area negative), the faces are only joined: a broken face makes every later fuse of the part fail, losing all
-    the joints of a stitching pass. The kept pieces, though they come from one fuse, are intersected with each
+    area negative), or when it goes all the way round its surface though none of the faces did, the faces are only
+    joined: a broken face makes every later fuse of the part fail, losing all the joints of a stitching pass. The kept pieces, though they come from one fuse, are intersected with each
     other again, each its own argument: as one argument, the open length a part was left with moved by up to 6%
     with the mere order of the arguments, and a later fuse of another part lost area and failed its pass."""
     joined = general_fuse(faces, fuzzy).Shape()
@@ -131,7 +131,12 @@ def unify(faces: list[TopoDS_Shape], fuzzy: float) -> TopoDS_Shape:
     merger.SetAngularTolerance(SAME_DOMAIN_ANGLE)
     merger.Build()
     merged = merger.Shape()
-    return merged if all(_sound(face) for face in subshapes(merged, TopAbs_FACE)) else joined
+    # A ring made of pieces that were none (a tube's arc and the band closing its gap, a foot grown into a floor
+    # with the band under the gap) came out of the next fuse broken; a tube that was whole merges as before.
+    rings = any(any(full_turns(TopoDS.Face(face))) for face in faces)
+    made = subshapes(merged, TopAbs_FACE)
+    sound = all(_sound(face) and (rings or not any(full_turns(TopoDS.Face(face)))) for face in made)
+    return merged if sound else joined
 
 
 def _sound(face: TopoDS_Shape) -> bool:

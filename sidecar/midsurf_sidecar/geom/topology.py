@@ -18,7 +18,23 @@ from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Wire
 from OCP.gp import gp_Pnt
 
-from ..constants import FACE_PROPS_KEPT
+from ..constants import FACE_PROPS_KEPT, FULL_TURN
+
+
+def full_turns(face: TopoDS_Face) -> tuple[bool, bool]:
+    """Whether `face` goes all the way round its surface along u, and along v (a tube's cylinder, a dome's
+    sphere, an elbow's torus): closed, not only periodic (a B-spline closed on itself, as some CAD writes tubes
+    and as a freeform dome's mid-patch is, has a seam too)."""
+    surface = BRep_Tool.Surface_s(face)
+    u_closed = surface.IsUPeriodic() or surface.IsUClosed()
+    v_closed = surface.IsVPeriodic() or surface.IsVClosed()
+    if not (u_closed or v_closed):
+        return False, False  # most faces: no need for the UV bounds
+    u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+    su0, su1, sv0, sv1 = surface.Bounds()
+    u_turn = surface.UPeriod() if surface.IsUPeriodic() else su1 - su0
+    v_turn = surface.VPeriod() if surface.IsVPeriodic() else sv1 - sv0
+    return u_closed and u1 - u0 >= u_turn * (1 - FULL_TURN), v_closed and v1 - v0 >= v_turn * (1 - FULL_TURN)
 
 
 def compound_of(shapes: list[TopoDS_Shape]) -> TopoDS_Compound:

@@ -18,10 +18,10 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Iterator, TopoDS_Shape, TopoDS_Shell
 from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 
-from ..constants import CONFUSION, FULL_TURN, SAME_DOMAIN_ANGLE
+from ..constants import CONFUSION, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
 from ..geom.topology import (
-    IndexedShapeMap, bounds_face, compound_of, edge_uses, face_props, face_wires, indexed_map, invalid_faces, subshapes,
+    IndexedShapeMap, bounds_face, compound_of, edge_uses, full_turns, face_props, face_wires, indexed_map, invalid_faces, subshapes,
 )
 from ..geom.uv_lines import line_within
 from .reseat import on_cylinder, reseat_set
@@ -450,21 +450,15 @@ def closing_isolines(faces: list[TopoDS_Shape]) -> list[TopoDS_Shape]:
     tools = []
     for shape in faces:
         face = TopoDS.Face(shape)
+        round_u, round_v = full_turns(face)
+        if not (round_u or round_v):
+            continue
         surface = BRep_Tool.Surface_s(face)
-        # Closed, not only periodic: a B-spline closed on itself (some CAD writes tubes so, and a freeform dome's
-        # mid-patch is one) has a seam too.
-        u_closed = surface.IsUPeriodic() or surface.IsUClosed()
-        v_closed = surface.IsVPeriodic() or surface.IsVClosed()
-        if not (u_closed or v_closed):
-            continue  # most faces: no need for the UV bounds
         u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
-        su0, su1, sv0, sv1 = surface.Bounds()
-        u_turn = surface.UPeriod() if surface.IsUPeriodic() else su1 - su0
-        v_turn = surface.VPeriod() if surface.IsVPeriodic() else sv1 - sv0
         isolines = []
-        if u_closed and u1 - u0 >= u_turn * (1 - FULL_TURN):
+        if round_u:
             isolines.append(BRepBuilderAPI_MakeEdge(surface.UIso((u0 + u1) / 2), v0, v1))
-        if v_closed and v1 - v0 >= v_turn * (1 - FULL_TURN):
+        if round_v:
             isolines.append(BRepBuilderAPI_MakeEdge(surface.VIso((v0 + v1) / 2), u0, u1))
         for maker in isolines:
             if maker.IsDone():
