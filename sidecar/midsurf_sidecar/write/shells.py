@@ -21,11 +21,12 @@ from OCP.collections import Map_TopoDS_Shape_TopTools_ShapeMapHasher as ShapeMap
 from ..constants import CONFUSION, SAME_DOMAIN_ANGLE
 from ..geom.booleans import split, within
 from ..geom.topology import (
-    IndexedShapeMap, bounds_face, compound_of, edge_uses, full_turns, face_props, face_wires, indexed_map, invalid_faces, subshapes,
+    IndexedShapeMap, bounds_face, compound_of, edge_uses, face_props, face_wires, full_turns, indexed_map,
+    invalid_faces, subshapes,
 )
 from ..geom.uv_lines import line_within
-from .reseat import on_cylinder, reseat_set
 from ..protocol.errors import KernelError
+from .reseat import on_cylinder, reseat_set
 
 
 def make_shells(
