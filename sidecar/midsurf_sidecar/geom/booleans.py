@@ -122,9 +122,10 @@ def unify(faces: list[TopoDS_Shape], fuzzy: float) -> TopoDS_Shape:
     faces include the very faces of the stitched patches that touch nothing (the fuse keeps those as they are):
     it gets a copy. When a merged face comes out broken (BRepCheck fails, or its wires turn inside out and its
     area negative), or when it goes all the way round its surface though none of the faces did, the faces are only
-    joined: a broken face makes every later fuse of the part fail, losing all the joints of a stitching pass. The kept pieces, though they come from one fuse, are intersected with each
-    other again, each its own argument: as one argument, the open length a part was left with moved by up to 6%
-    with the mere order of the arguments, and a later fuse of another part lost area and failed its pass."""
+    joined: a broken face makes every later fuse of the part fail, losing all the joints of a stitching pass. The
+    kept pieces, though they come from one fuse, are intersected with each other again, each its own argument:
+    as one argument, the open length a part was left with moved by up to 6% with the mere order of the
+    arguments, and a later fuse of another part lost area and failed its pass."""
     joined = general_fuse(faces, fuzzy).Shape()
     merger = ShapeUpgrade_UnifySameDomain(BRepBuilderAPI_Copy(joined, False, False).Shape(), True, True, False)
     merger.SetLinearTolerance(max(fuzzy, CONFUSION))
@@ -133,10 +134,14 @@ def unify(faces: list[TopoDS_Shape], fuzzy: float) -> TopoDS_Shape:
     merged = merger.Shape()
     # A ring made of pieces that were none (a tube's arc and the band closing its gap, a foot grown into a floor
     # with the band under the gap) came out of the next fuse broken; a tube that was whole merges as before.
-    rings = any(any(full_turns(TopoDS.Face(face))) for face in faces)
     made = subshapes(merged, TopAbs_FACE)
-    sound = all(_sound(face) and (rings or not any(full_turns(TopoDS.Face(face)))) for face in made)
+    new_ring = any(_goes_round(f) for f in made) and not any(_goes_round(f) for f in faces)
+    sound = not new_ring and all(_sound(face) for face in made)
     return merged if sound else joined
+
+
+def _goes_round(face: TopoDS_Shape) -> bool:
+    return any(full_turns(TopoDS.Face(face)))
 
 
 def _sound(face: TopoDS_Shape) -> bool:

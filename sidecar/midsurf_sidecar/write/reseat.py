@@ -16,7 +16,6 @@ from typing import Callable, NamedTuple
 from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.BRepLProp import BRepLProp_SLProps
 from OCP.BRepTools import BRepTools
 from OCP.Geom import Geom_ConicalSurface, Geom_CylindricalSurface, Geom_Surface
 from OCP.GeomAbs import GeomAbs_Cone, GeomAbs_Cylinder
@@ -27,7 +26,9 @@ from OCP.TopAbs import TopAbs_EDGE, TopAbs_FORWARD
 from OCP.TopoDS import TopoDS, TopoDS_Face, TopoDS_Shape
 
 from ..constants import SAME_DOMAIN_ANGLE
+from ..geom.face_normals import OutwardNormals
 from ..geom.topology import face_props, face_wires, subshapes
+from ..geom.vectors import Vec, dot
 
 # The least gap between the pieces (radians) the seam is moved into: a narrower one leaves the seam on an edge.
 LEAST_GAP = 1e-3
@@ -197,9 +198,10 @@ def _laid(face: TopoDS_Face, surface: Geom_Surface) -> TopoDS_Face | None:
         return None
     if not BRepCheck_Analyzer(made).IsValid():
         return None
-    if _normal(made).Dot(_normal(face)) < 0.0:
-        made.Reverse()
-    return made
+    normals = [_middle_normal(f) for f in (made, face)]
+    if None in normals:
+        return None
+    return TopoDS.Face(made.Reversed()) if dot(*normals) < 0.0 else made
 
 
 def _bounded(surface: Geom_Surface, wires: list[TopoDS_Shape]) -> TopoDS_Face | None:
@@ -219,9 +221,9 @@ def _bounded(surface: Geom_Surface, wires: list[TopoDS_Shape]) -> TopoDS_Face | 
     return made
 
 
-def _normal(face: TopoDS_Face) -> gp_Vec:
-    """The normal of `face` (its orientation counted) in the middle of its parameter box."""
+def _middle_normal(face: TopoDS_Face) -> Vec | None:
+    """The outward normal of `face` in the middle of its parameter box: the same point of the surface for a face
+    and its copy laid anew (the middle angle and height of its stretch of the tube)."""
     umin, umax, vmin, vmax = BRepTools.UVBounds_s(face)
-    props = BRepLProp_SLProps(BRepAdaptor_Surface(face), 0.5 * (umin + umax), 0.5 * (vmin + vmax), 1, 1e-9)
-    normal = gp_Vec(props.Normal())
-    return normal.Reversed() if face.Orientation() != TopAbs_FORWARD else normal
+    found = OutwardNormals(face).at(0.5 * (umin + umax), 0.5 * (vmin + vmax))
+    return found[1] if found else None
