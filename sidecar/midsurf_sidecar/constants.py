@@ -133,6 +133,10 @@ SECTOR_INNER_SHARE = 0.5
 
 # --- fuse and write ---------------------------------------------------------------------------------------------
 
+# Two straight joint lines within this angle (radians) of each other are parallel: the two lines of one tube
+# crossing a wall (`fuse.patch_fuse._stem_end_cuts`); both are rulings of the one surface, parallel to round-off.
+PARALLEL_LINES = 1e-6
+
 # Angular tolerance (radians) of the same-domain test that merges a patch's faces: OCCT's default (1e-12) misses
 # faces that are coplanar to round-off (KERNEL_NOTES, "Extending").
 SAME_DOMAIN_ANGLE = 1e-6

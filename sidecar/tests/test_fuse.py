@@ -313,3 +313,61 @@ def test_settled_patches_and_the_faces_of_a_fused_patch_are_not_intersected_with
     mixed = client.ok("fuse", patches=handles, fuzzy=1e-6, settled=[0, 1])
     check_consistent(mixed)
     assert sorted((f["patch"], round(f["area"])) for f in mixed["faces"]) == [(0, 600), (0, 1800), (1, 1600), (2, 1560)]
+
+
+def test_a_tube_ending_inside_a_wall_parts_the_wall_at_its_end(client):
+    """A tube (a screw boss, R 5 about x = 30, y = 2, z 0..25) crossing a wall (y = 0, x 0..60, z 0..40) that
+    runs on above it: the tube's two lines on the wall end inside it, abreast. Extended, they part the wall's
+    stretch inside the tube; the cut between their ends parts that stretch again where the tube ends, so the
+    wall inside the tube's wall below its end is a piece of its own."""
+    import math
+
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.Geom import Geom_CylindricalSurface
+    from OCP.gp import gp_Ax3, gp_Dir
+
+    wall = rectangle((0, 0, 0), (60, 0, 0), (60, 0, 40), (0, 0, 40))
+    surface = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(30, 2, 0), gp_Dir(0, 0, 1)), 5.0)
+    tube = BRepBuilderAPI_MakeFace(surface, 0.0, 2 * math.pi, 0.0, 25.0, 1e-7).Face()
+    fused = client.ok("fuse", patches=put_patches(client, wall, tube), fuzzy=1e-6, split_internal=True)
+    check_consistent(fused)
+    chord = 2 * math.sqrt(5.0**2 - 2.0**2)
+    side = (60 - chord) / 2 * 40
+    pieces = sorted(round(f["area"], 6) for f in fused["faces"] if f["patch"] == 0)
+    assert pieces == pytest.approx(sorted([side, side, chord * 25, chord * 15]))
+    wall_only = [e for e in fused["edges"] if all(fused["faces"][f]["patch"] == 0 for f in e["faces"])]
+    (cut,) = [e for e in wall_only if len(e["faces"]) == 2 and on_line(e, z=25.0)]
+    assert cut["length"] == pytest.approx(chord)
+    assert cut.get("stem_end") is True
+    assert sum(1 for e in fused["edges"] if e.get("stem_end")) == 1
+
+
+@pytest.mark.parametrize("stem", ["half_tube_on_one_side", "flat_strips_across"])
+def test_only_a_tube_crossing_a_wall_is_cut_across_at_its_end(client, stem):
+    """Two lines ending inside a wall (y = 0, x 0..60, z 0..40) abreast at z = 25, from stems that hold no part of
+    the wall inside their own wall: a half tube standing on one side of it (R 5 about x = 30, y = 0: a U-shaped
+    boss against a wall), and two flat strips crossing it (x = 27 and 33, y -10..10: a box's walls)."""
+    import math
+
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
+    from OCP.Geom import Geom_CylindricalSurface
+    from OCP.gp import gp_Ax3, gp_Dir
+
+    wall = rectangle((0, 0, 0), (60, 0, 0), (60, 0, 40), (0, 0, 40))
+    if stem == "half_tube_on_one_side":
+        surface = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(30, 0, 0), gp_Dir(0, 0, 1)), 5.0)
+        shape = compound(BRepBuilderAPI_MakeFace(surface, 0.0, math.pi, 0.0, 25.0, 1e-7).Face())
+        between = 10.0
+    else:
+        shape = compound(
+            rectangle((27, -10, 0), (27, 10, 0), (27, 10, 25), (27, -10, 25)),
+            rectangle((33, -10, 0), (33, 10, 0), (33, 10, 25), (33, -10, 25)),
+        )
+        between = 6.0
+    handles = [client.session.store.put(compound(wall)), client.session.store.put(shape)]
+    fused = client.ok("fuse", patches=handles, fuzzy=1e-6, split_internal=True)
+    check_consistent(fused)
+    pieces = sorted(round(f["area"], 6) for f in fused["faces"] if f["patch"] == 0)
+    side = (60 - between) / 2 * 40
+    assert pieces == pytest.approx([between * 40, side, side])
+    assert not any(e.get("stem_end") for e in fused["edges"])

@@ -30,7 +30,7 @@ impl From<wire::FusedFace> for FusedFace {
 
 impl From<wire::FusedEdge> for FusedEdge {
     fn from(w: wire::FusedEdge) -> FusedEdge {
-        FusedEdge { length: w.length, faces: w.faces, points: w.points, inside: w.inside }
+        FusedEdge { length: w.length, faces: w.faces, points: w.points, inside: w.inside, stem_end: w.stem_end }
     }
 }
 

@@ -347,6 +347,9 @@ pub struct FusedEdge {
     /// The faces (of `faces`) that hold the edge inside them (INTERNAL), not on their boundary.
     #[serde(default)]
     pub inside: Vec<usize>,
+    /// Made by the cut across the end of a stem crossing the face (sidecar `_stem_end_cuts`).
+    #[serde(default)]
+    pub stem_end: bool,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize)]

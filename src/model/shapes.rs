@@ -45,6 +45,9 @@ pub struct FusedEdge {
     /// The faces (of `faces`) that hold the edge inside them (an INTERNAL edge: a joint ending inside a face
     /// along a curve that could not split it). A STEP file keeps no such edge: it joins nothing once written.
     pub inside: Vec<usize>,
+    /// A cut across the end of a stem (a tube) crossing the face, where the face runs on past the stem: it
+    /// parts the face's stretch inside the stem's wall from the stretch beyond (see `trim::find_branches`).
+    pub stem_end: bool,
 }
 
 /// The shells made of the kept faces of a fused shape.

@@ -451,7 +451,8 @@ mod tests {
         let mut stitched = outcome(3);
         stitched.fused.faces[0].edges = vec![0];
         stitched.fused.faces[1].edges = vec![0];
-        stitched.fused.edges = vec![FusedEdge { length: 1.0, faces: vec![0, 1], points: vec![], inside: vec![] }];
+        stitched.fused.edges =
+            vec![FusedEdge { length: 1.0, faces: vec![0, 1], points: vec![], inside: vec![], stem_end: false }];
         // First written as faces 0 (pieces 0 and 1 merged) and 2.
         let (assembled, last, warning, kernel) =
             check_all_from(&mut stitched, vec![0, 2], vec![shells_reply(&[true, true, true])], |_, sh| {
@@ -501,6 +502,7 @@ mod tests {
                     faces: e.iter().map(|&p| at(p)).collect(),
                     points: vec![],
                     inside: vec![],
+                    stem_end: false,
                 })
                 .collect();
             for (j, edge) in stitched.fused.edges.iter().enumerate() {

@@ -167,7 +167,7 @@ mod tests {
     }
 
     fn edge(length: f64, faces: Vec<usize>) -> FusedEdge {
-        FusedEdge { length, faces, points: Vec::new(), inside: Vec::new() }
+        FusedEdge { length, faces, points: Vec::new(), inside: Vec::new(), stem_end: false }
     }
 
     fn info() -> PatchInfo {

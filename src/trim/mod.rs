@@ -92,69 +92,115 @@ fn distance_to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
     line.windows(2).map(|w| distance_to_segment(p, w[0], w[1])).fold(f64::INFINITY, f64::min)
 }
 
+/// What a piece of a fused shape touches, read off its edges.
+struct Touch<'a> {
+    /// Other patches met along its edges, sorted.
+    crossing: Vec<usize>,
+    /// The lines along which they meet it, and the stubs of its cut (see `find_branches`).
+    lines: Vec<&'a [DVec3]>,
+    /// Its edges shared with pieces of its own patch only.
+    own: Vec<usize>,
+    /// Whether its boundary goes on past a free edge or a seam.
+    hanging: bool,
+    /// How far a branch of it may hang past those patches: the largest of their limits (0 when it meets none).
+    across: f64,
+}
+
+fn touch<'a>(fused: &'a Fused, i: usize, limit: &[f64]) -> Touch<'a> {
+    let face = &fused.faces[i];
+    let mut touch = Touch { crossing: Vec::new(), lines: Vec::new(), own: Vec::new(), hanging: false, across: 0.0 };
+    for &e in &face.edges {
+        let edge = &fused.edges[e];
+        let others: Vec<usize> =
+            edge.faces.iter().map(|&g| fused.faces[g].patch).filter(|&p| p != face.patch).collect();
+        if !others.is_empty() {
+            touch.crossing.extend(others);
+            touch.lines.push(&edge.points);
+        } else if edge.faces.iter().any(|&g| g != i) {
+            touch.own.push(e);
+        } else {
+            // A free edge, or a seam (listed twice for this face): the piece's boundary goes on past it.
+            touch.hanging = true;
+        }
+    }
+    touch.crossing.sort_unstable();
+    touch.crossing.dedup();
+    touch.across = touch.crossing.iter().map(|&p| limit[p]).fold(0.0, f64::max);
+    touch
+}
+
 /// The branches to drop; `limit[k]` is how far a branch may hang past patch k (see [`branch_limit`]).
 pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
     let n = fused.faces.len();
+    let mut touches: Vec<Touch> = (0..n).map(|i| touch(fused, i, limit)).collect();
     // Pieces of the same patch sharing an edge no other patch crosses.
     let mut own_links: Vec<Vec<usize>> = vec![Vec::new(); n];
+    // Cuts across a stem's end seen from the piece beyond the stem: (piece, piece inside the stem's wall).
+    let mut stem_ends: Vec<(usize, usize)> = Vec::new();
+    for i in 0..n {
+        for k in 0..touches[i].own.len() {
+            let edge = &fused.edges[touches[i].own[k]];
+            let others = edge.faces.iter().copied().filter(|&g| g != i);
+            if edge.length < touches[i].across {
+                // Shorter than an overshoot: where the crossing line stops a little before the strip does, the
+                // stub between the two is part of the cut, not what joins the piece to its patch.
+                touches[i].lines.push(&edge.points);
+            } else if edge.stem_end {
+                // Beyond a tube's end: the piece across the cut lies in the tube's wall, which the tube's patch
+                // stands for; the cut does not join this piece to it either (unless it must, below).
+                stem_ends.extend(others.map(|g| (i, g)));
+            } else {
+                own_links[i].extend(others);
+            }
+        }
+    }
+    // A cut across a stem's end still joins the pieces either side when the piece beyond reaches no crossing but
+    // through the piece in the stem's wall: dropping that would leave it loose.
+    let mut stretch: Vec<usize> = (0..n).collect();
+    for (i, links) in own_links.iter().enumerate() {
+        for &j in links {
+            union(&mut stretch, i, j);
+        }
+    }
+    let mut crosses = vec![false; n];
+    for (i, t) in touches.iter().enumerate() {
+        if !t.crossing.is_empty() {
+            let root = find(&mut stretch, i);
+            crosses[root] = true;
+        }
+    }
+    for (i, j) in stem_ends {
+        if !crosses[find(&mut stretch, i)] {
+            own_links[i].push(j);
+        }
+    }
     // Hanging pieces that touch no other patch (an overshoot corner, the end of a strip): they anchor nothing
     // and stay only when joined to a piece that does.
     let mut loose = vec![false; n];
     // Pieces hanging past a crossing by no more than an overshoot: (width, crossing patches).
     let mut overshoot: Vec<Option<(f64, Vec<usize>)>> = vec![None; n];
-    for (i, face) in fused.faces.iter().enumerate() {
-        let mut crossing: Vec<usize> = Vec::new();
-        let mut lines: Vec<&[DVec3]> = Vec::new();
-        let mut own: Vec<usize> = Vec::new();
-        let mut hanging = false;
-        for &e in &face.edges {
-            let edge = &fused.edges[e];
-            let others: Vec<usize> =
-                edge.faces.iter().map(|&g| fused.faces[g].patch).filter(|&p| p != face.patch).collect();
-            if !others.is_empty() {
-                crossing.extend(others);
-                lines.push(&edge.points);
-            } else if edge.faces.iter().any(|&g| g != i) {
-                own.push(e);
-            } else {
-                // A free edge, or a seam (listed twice for this face): the piece's boundary goes on past it.
-                hanging = true;
-            }
-        }
-        crossing.sort_unstable();
-        crossing.dedup();
-        let across = crossing.iter().map(|&p| limit[p]).fold(0.0, f64::max);
-        for e in own {
-            let edge = &fused.edges[e];
-            if edge.length < across {
-                // Shorter than an overshoot: where the crossing line stops a little before the strip does, the
-                // stub between the two is part of the cut, not what joins the piece to its patch.
-                lines.push(&edge.points);
-            } else {
-                own_links[i].extend(edge.faces.iter().copied().filter(|&g| g != i));
-            }
-        }
-        if !hanging && own_links[i].is_empty() {
+    for (i, (face, t)) in fused.faces.iter().zip(touches).enumerate() {
+        if !t.hanging && own_links[i].is_empty() {
             // Closed in by crossing lines all round (a floor between walls): however narrow, a branch hangs past
             // the crossing, by a free edge or with other overshoot pieces.
             continue;
         }
-        if crossing.is_empty() {
+        if t.crossing.is_empty() {
             // Only an overshoot-sized piece (mean width 2 x area / perimeter within the branch limit of its own
             // thickness) is loose: a large piece split off by its patch's own edges is part of the wall.
             let perimeter: f64 = face.edges.iter().map(|&e| fused.edges[e].length).sum();
-            loose[i] = hanging && 2.0 * face.area <= limit[face.patch] * perimeter;
+            loose[i] = t.hanging && 2.0 * face.area <= limit[face.patch] * perimeter;
             continue;
         }
         let mut width = 0.0;
         for p in face.edges.iter().flat_map(|&e| fused.edges[e].points.iter()) {
-            width = lines.iter().map(|l| distance_to_polyline(*p, l)).fold(f64::INFINITY, f64::min).max(width);
-            if width > across {
+            width = t.lines.iter().map(|l| distance_to_polyline(*p, l)).fold(f64::INFINITY, f64::min).max(width);
+            if width > t.across {
                 break;
             }
         }
-        if width <= across {
-            overshoot[i] = Some((width, crossing));
+        if width <= t.across {
+            overshoot[i] = Some((width, t.crossing));
         }
     }
     // Pieces joined to each other, for the body.

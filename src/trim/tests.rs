@@ -20,6 +20,7 @@ fn edge(faces: Vec<usize>, a: DVec3, b: DVec3) -> FusedEdge {
         faces,
         points: (0..5).map(|k| a.lerp(b, k as f64 / 4.0)).collect(),
         inside: Vec::new(),
+        stem_end: false,
     }
 }
 
@@ -282,4 +283,27 @@ fn the_band_past_the_walls_goes_though_it_is_the_largest_piece() {
     let branches = find_branches(&ribbed_floor_edge(), &mid_limits(&[2.0; 4]));
     assert_eq!(branches.iter().map(|b| b.piece).collect::<Vec<_>>(), vec![0]);
     assert!((branches[0].width - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn a_strip_inside_a_tube_wall_is_a_branch_though_the_wall_runs_on_past_the_tube() {
+    // Piece 4 of patch 0 (the wall running on past a tube's end) is joined to branch 1 (the wall inside the
+    // tube's wall) by the cut across the tube's end, and to the main piece 0 by a long edge of their own.
+    let mut fused = l_corner();
+    fused.faces.push(face(0, 400.0, vec![5, 6, 7]));
+    fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
+    fused.edges.push(edge(vec![4], DVec3::new(0.0, 60.0, 1.0), DVec3::new(20.0, 60.0, 1.0)));
+    fused.edges.push(edge(vec![0, 4], DVec3::new(1.0, 40.0, 1.0), DVec3::new(20.0, 40.0, 1.0)));
+    fused.faces[1].edges.push(5);
+    fused.faces[0].edges.push(7);
+    // Any other edge that short joins piece 4 to the strip, which stays.
+    assert_eq!(branch_pieces(&fused), vec![3]);
+    // The cut joins nothing: the strip goes.
+    fused.edges[5].stem_end = true;
+    assert_eq!(branch_pieces(&fused), vec![1, 3]);
+    // Unless piece 4 reaches no crossing but through the strip: it keeps it.
+    fused.faces[0].edges.pop();
+    fused.faces[4].edges.pop();
+    fused.edges.pop();
+    assert_eq!(branch_pieces(&fused), vec![3]);
 }

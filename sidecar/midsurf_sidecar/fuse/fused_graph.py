@@ -17,9 +17,13 @@ from ..geom.vectors import xyz
 from ..protocol.errors import KernelError, one_line
 
 
-def describe(fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int]) -> dict[str, Any]:
-    """The reply's `faces` (face_map: the faces of F; patch_of: the patch of each) and `edges`."""
+def describe(
+    fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int], stem_ends: list[TopoDS_Shape] = ()
+) -> dict[str, Any]:
+    """The reply's `faces` (face_map: the faces of F; patch_of: the patch of each) and `edges`; `stem_ends`: edges
+    of F made by a cut across a stem's end (`patch_fuse._stem_end_cuts`), flagged `stem_end`."""
     edge_map = indexed_map(fused, TopAbs_EDGE)
+    cut = {edge_map.FindIndex(edge) - 1 for edge in stem_ends} - {-1}
     edge_faces: list[list[int]] = [[] for _ in range(edge_map.Size())]
     edge_inside: list[list[int]] = [[] for _ in range(edge_map.Size())]
     faces = []
@@ -42,7 +46,8 @@ def describe(fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int]
     edges_json = []
     for e in range(edge_map.Size()):
         try:
-            edges_json.append(_describe_edge(TopoDS.Edge(edge_map.FindKey(e + 1)), edge_faces[e], edge_inside[e]))
+            edge = _describe_edge(TopoDS.Edge(edge_map.FindKey(e + 1)), edge_faces[e], edge_inside[e])
+            edges_json.append({**edge, "stem_end": True} if e in cut else edge)
         except Exception as exc:
             raise KernelError(f"fused edge {e} (faces {edge_faces[e]}): {one_line(exc)}") from exc
     return {"faces": faces, "edges": edges_json}

@@ -13,7 +13,9 @@ from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Cone, GeomAbs_Cylinder, GeomAbs_
 from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_INTERNAL, TopAbs_VERTEX
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Edge, TopoDS_Face, TopoDS_Shape
+from OCP.gp import gp_Dir, gp_Pnt, gp_Vec
 
+from ..constants import PARALLEL_LINES
 from ..geom.booleans import arguments, check_area_kept, general_fuse, split, within
 from ..geom.topology import IndexedShapeMap, ancestors, diagonal, indexed_map, subshapes
 from ..protocol.errors import KernelError
@@ -38,15 +40,19 @@ def fuse(
     for k, body in enumerate(bodies if bodies is not None else [0] * len(patches)):
         groups.setdefault(body, []).append(k)
     if len(groups) <= 1:
-        fused, face_map, patch_of = _fuse_one(patches, fuzzy, split_internal, how)
-        return fused, describe(fused, face_map, patch_of)
+        fused, face_map, patch_of, stem_ends = _fuse_one(patches, fuzzy, split_internal, how)
+        return fused, describe(fused, face_map, patch_of, stem_ends)
     fused, maker = TopoDS_Compound(), BRep_Builder()
     maker.MakeCompound(fused)
     owner: list[tuple[TopoDS_Shape, int]] = []
+    stem_ends = []
     for members in groups.values():
         part_how = (how[0], {i for i, k in enumerate(members) if k in how[1]})
-        part, part_faces, part_patch = _fuse_one([patches[k] for k in members], fuzzy, split_internal, part_how)
+        part, part_faces, part_patch, part_ends = _fuse_one(
+            [patches[k] for k in members], fuzzy, split_internal, part_how
+        )
         owner.extend((part_faces.FindKey(i + 1), members[p]) for i, p in enumerate(part_patch))
+        stem_ends.extend(part_ends)
         maker.Add(fused, part)
     face_map = indexed_map(fused, TopAbs_FACE)
     patch_of = [-1] * face_map.Size()
@@ -54,13 +60,14 @@ def fuse(
         patch_of[face_map.FindIndex(face) - 1] = patch
     if -1 in patch_of:
         raise KernelError("a face of a body's fuse is missing from the whole")
-    return fused, describe(fused, face_map, patch_of)
+    return fused, describe(fused, face_map, patch_of, stem_ends)
 
 
 def _fuse_one(
     patches: list[TopoDS_Shape], fuzzy: float, split_internal: bool, how: tuple[bool, set[int]]
-) -> tuple[TopoDS_Shape, IndexedShapeMap, list[int]]:
-    """`fuse` of patches all of one body: (F, its faces, the patch of each).
+) -> tuple[TopoDS_Shape, IndexedShapeMap, list[int], list[TopoDS_Shape]]:
+    """`fuse` of patches all of one body: (F, its faces, the patch of each, its edges made by the cuts across a
+    stem's end, `_stem_end_cuts`).
 
     Every FACE of every patch is an argument of its own, not every patch: BOPAlgo_Builder does not
     intersect the sub-shapes of one argument with each other, so the separately offset faces of a patch
@@ -83,11 +90,13 @@ def _fuse_one(
         fused = builder.Shape()
         face_map = indexed_map(fused, TopAbs_FACE)
         patch_of = _trace_patches(builder, inputs, input_patch, face_map)
+    stem_ends: list[TopoDS_Shape] = []
     if split_internal:
-        split_fused, patch_of = _split_faces(fused, face_map, patch_of, _internal_edge_lines(fused, face_map), fuzzy)
+        tools, cuts = _internal_edge_lines(fused, face_map, patch_of, fuzzy)
+        split_fused, patch_of, stem_ends = _split_faces(fused, face_map, patch_of, tools, cuts, fuzzy)
         if split_fused is not fused:
             fused, face_map = split_fused, indexed_map(split_fused, TopAbs_FACE)
-    return fused, face_map, patch_of
+    return fused, face_map, patch_of, stem_ends
 
 
 def _fuse_faces(
@@ -122,7 +131,9 @@ def _fuse_faces(
     return inputs, input_patch, builder
 
 
-def _internal_edge_lines(fused: TopoDS_Shape, face_map: IndexedShapeMap) -> list[TopoDS_Shape]:
+def _internal_edge_lines(
+    fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int], fuzzy: float
+) -> tuple[list[TopoDS_Shape], list[TopoDS_Shape]]:
     """A T-joint that stops inside a face (a rib ending part way up a wall) is an INTERNAL edge of that face,
     which STEP cannot carry: the face is split along the edge's line, through to its boundary, so the joint is
     a boundary edge shared by the pieces and the stem. An arc (a boss's foot on its floor) is completed to its
@@ -130,11 +141,13 @@ def _internal_edge_lines(fused: TopoDS_Shape, face_map: IndexedShapeMap) -> list
     the section of the face with the surface of the stem standing on it, when that surface is a plane,
     cylinder or cone (a flat rib on a freeform shell): the line and the circle are that section's simplest
     cases. Other curves stay internal (on a planar face, a section of a slanted stem's cylinder would cut a
-    disc the stem's foot only touches). `fused`: the fused shape, `face_map` its faces."""
+    disc the stem's foot only touches). `fused`: the fused shape, `face_map` its faces, `patch_of` the patch of
+    each. Returns (the tools, the cuts across a stem's end among them: `_stem_end_cuts`)."""
     stems = ancestors(fused, TopAbs_EDGE, TopAbs_FACE)
-    tools = []
+    tools, cuts = [], []
     for i in range(face_map.Size()):
         face = TopoDS.Face(face_map.FindKey(i + 1))
+        lines: list[tuple[TopoDS_Edge, gp_Dir, int]] = []
         explorer = TopExp_Explorer(face, TopAbs_EDGE)
         while explorer.More():
             edge = TopoDS.Edge(explorer.Current())
@@ -146,11 +159,57 @@ def _internal_edge_lines(fused: TopoDS_Shape, face_map: IndexedShapeMap) -> list
                 reach = diagonal(face)
                 first, last = curve.FirstParameter() - reach, curve.LastParameter() + reach
                 tools.extend(within(BRepBuilderAPI_MakeEdge(curve.Line(), first, last).Edge(), face))
+                # A tube crossing the face: a piece of one cylindrical patch on each side of the line.
+                sharing = [k for k in (face_map.FindIndex(other) - 1 for other in stems.FindFromKey(edge)) if k != i]
+                stem = {patch_of[k] for k in sharing}
+                if len(stem) == 1 and len(sharing) >= 2 and all(_on_cylinder(face_map, k) for k in sharing):
+                    lines.append((edge, curve.Line().Direction(), stem.pop()))
             elif curve.GetType() == GeomAbs_Circle:
                 tools.extend(within(BRepBuilderAPI_MakeEdge(curve.Circle()).Edge(), face))
             elif stems.Contains(edge) and BRepAdaptor_Surface(face, False).GetType() != GeomAbs_Plane:
                 tools.extend(_stem_section(face, edge, stems.FindFromKey(edge)))
-    return tools
+        cuts.extend(_stem_end_cuts(face, lines, fuzzy))
+    return tools + cuts, cuts
+
+
+def _on_cylinder(face_map: IndexedShapeMap, k: int) -> bool:
+    return BRepAdaptor_Surface(TopoDS.Face(face_map.FindKey(k + 1)), False).GetType() == GeomAbs_Cylinder
+
+
+def _stem_end_cuts(
+    face: TopoDS_Face, lines: list[tuple[TopoDS_Edge, gp_Dir, int]], fuzzy: float
+) -> list[TopoDS_Shape]:
+    """Cuts across `face` between the ends of two of its INTERNAL `lines` (edge, direction, the patch of the tube
+    crossing the face there: a cylindrical patch with a face on each side of the line) that stand on one tube and
+    stop inside the face abreast: a tube (a screw boss) crossing a wall that runs on past the tube's end (a rib
+    standing above the boss). The lines, extended, part off the wall's stretch inside the tube; the cut parts that
+    stretch again where the tube ends, so the wall's mid-surface inside the tube's wall, below the tube's end, is
+    a piece of its own, which trimming judges as an overshoot past the tube, while the stretch beyond the end
+    runs on as the wall's. Only a tube: two lines of a planar stem (a U-shaped boss against a wall, a box's walls
+    crossing a face) hold the wall between them, not inside the stem's wall. Abreast: the cut is square to both
+    lines, within `fuzzy`."""
+    ends: list[tuple[gp_Pnt, gp_Dir, int]] = []
+    if len(lines) < 2:
+        return []
+    vertex_edges = ancestors(face, TopAbs_VERTEX, TopAbs_EDGE)
+    for edge, direction, stem in lines:
+        for vertex in subshapes(edge, TopAbs_VERTEX):
+            # An end inside the face: no other edge of the face comes to it.
+            if all(other.IsSame(edge) for other in vertex_edges.FindFromKey(vertex)):
+                ends.append((BRep_Tool.Pnt_s(TopoDS.Vertex(vertex)), direction, stem))
+    cuts: list[TopoDS_Shape] = []
+    for k, (start, direction, stem) in enumerate(ends):
+        for end, other, other_stem in ends[k + 1 :]:
+            across = gp_Vec(start, end)
+            if (
+                other_stem != stem
+                or not direction.IsParallel(other, PARALLEL_LINES)
+                or across.Magnitude() <= fuzzy
+                or abs(across.Dot(gp_Vec(direction))) > fuzzy
+            ):
+                continue
+            cuts.extend(within(BRepBuilderAPI_MakeEdge(start, end).Edge(), face))
+    return cuts
 
 
 def _stem_section(face: TopoDS_Face, edge: TopoDS_Edge, sharing: Any) -> list[TopoDS_Shape]:
@@ -196,15 +255,21 @@ def _chain_through(section: TopoDS_Shape, edge: TopoDS_Edge) -> list[TopoDS_Shap
 
 
 def _split_faces(
-    fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int], tools: list[TopoDS_Shape], fuzzy: float
-) -> tuple[TopoDS_Shape, list[int]]:
+    fused: TopoDS_Shape,
+    face_map: IndexedShapeMap,
+    patch_of: list[int],
+    tools: list[TopoDS_Shape],
+    marked: list[TopoDS_Shape],
+    fuzzy: float,
+) -> tuple[TopoDS_Shape, list[int], list[TopoDS_Shape]]:
     """`fused` (its faces `face_map`) split by the edges `tools` lying on its faces, each piece keeping its face's
-    patch; `fused` itself when there are no tools, or OCCT gives up or breaks a face (no worse than before)."""
+    patch, with the edges the `marked` tools became; `fused` itself (and no edges) when there are no tools, or
+    OCCT gives up or breaks a face (no worse than before)."""
     if not tools:
-        return fused, patch_of
+        return fused, patch_of, []
     splitter = split(fused, tools, fuzzy, keep_area=True)
     if splitter is None:
-        return fused, patch_of
+        return fused, patch_of, []
     result = splitter.Shape()
     result_map = indexed_map(result, TopAbs_FACE)
     split_patch: list[int | None] = [None] * result_map.Size()
@@ -216,13 +281,17 @@ def _split_faces(
             if index >= 0 and split_patch[index] is None:
                 split_patch[index] = patch_of[i]
     if any(p is None for p in split_patch):
-        return fused, patch_of
+        return fused, patch_of, []
     # Keep only the faces: the tools' edges outside every face would otherwise ride along as loose edges.
     faces_only, builder = TopoDS_Compound(), BRep_Builder()
     builder.MakeCompound(faces_only)
     for j in range(result_map.Size()):
         builder.Add(faces_only, result_map.FindKey(j + 1))
-    return faces_only, split_patch  # type: ignore[return-value]
+    made = []
+    for tool in marked:
+        images = splitter.Modified(tool)
+        made.extend(images if images.Size() else [tool])
+    return faces_only, split_patch, made  # type: ignore[return-value]
 
 
 def _trace_patches(
