@@ -6,8 +6,10 @@
 //! and every point of its boundary lies within 0.75 x the crossing patch's thickness of the crossing lines (the
 //! overshoot is half a thickness; the margin absorbs tilted walls). A piece joined to another piece of its own
 //! patch by an edge that no other patch shares (longer than the overshoot) is not hanging: a joint strip grown
-//! from the patch's edge stays. A hanging piece touching no other patch stays only when so joined to a piece that is not a
-//! branch: overshoot corners joined only to branches go with them.
+//! from the patch's edge stays. A hanging piece touching no other patch stays only when so joined to a piece that
+//! is not a branch: overshoot corners joined only to branches go with them. The cut across a tube's end, where the
+//! wall runs on past a tube crossing it (`FusedEdge::stem_end`), joins nothing: the wall inside the tube's wall
+//! below its end is an overshoot past the tube like any other.
 
 use std::collections::BTreeSet;
 
@@ -135,7 +137,7 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
     let mut touches: Vec<Touch> = (0..n).map(|i| touch(fused, i, limit)).collect();
     // Pieces of the same patch sharing an edge no other patch crosses.
     let mut own_links: Vec<Vec<usize>> = vec![Vec::new(); n];
-    // Cuts across a stem's end seen from the piece beyond the stem: (piece, piece inside the stem's wall).
+    // Cuts across a tube's end, each seen from a piece it bounds: (that piece, the piece across the cut).
     let mut stem_ends: Vec<(usize, usize)> = Vec::new();
     for i in 0..n {
         for k in 0..touches[i].own.len() {
@@ -146,16 +148,16 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
                 // stub between the two is part of the cut, not what joins the piece to its patch.
                 touches[i].lines.push(&edge.points);
             } else if edge.stem_end {
-                // Beyond a tube's end: the piece across the cut lies in the tube's wall, which the tube's patch
-                // stands for; the cut does not join this piece to it either (unless it must, below).
+                // The cut across a tube's end parts the wall beyond the end from the wall inside the tube's wall
+                // (which the tube's patch stands for): it joins neither to the other (unless it must, below).
                 stem_ends.extend(others.map(|g| (i, g)));
             } else {
                 own_links[i].extend(others);
             }
         }
     }
-    // A cut across a stem's end still joins the pieces either side when the piece beyond reaches no crossing but
-    // through the piece in the stem's wall: dropping that would leave it loose.
+    // A cut across a tube's end still joins the pieces either side when one reaches no crossing but through the
+    // other: dropping the other would leave it loose.
     let mut stretch: Vec<usize> = (0..n).collect();
     for (i, links) in own_links.iter().enumerate() {
         for &j in links {
