@@ -98,7 +98,7 @@ fn distance_to_polyline(p: DVec3, line: &[DVec3]) -> f64 {
 struct Touch<'a> {
     /// Other patches met along its edges, sorted.
     crossing: Vec<usize>,
-    /// The lines along which they meet it, and the stubs of its cut (see `find_branches`).
+    /// The lines along which they meet it, and (added by `find_branches`) its own edges shorter than an overshoot.
     lines: Vec<&'a [DVec3]>,
     /// Its edges shared with pieces of its own patch only.
     own: Vec<usize>,
@@ -108,6 +108,7 @@ struct Touch<'a> {
     across: f64,
 }
 
+/// What piece `i` of `fused` touches; `limit` as for [`find_branches`].
 fn touch<'a>(fused: &'a Fused, i: usize, limit: &[f64]) -> Touch<'a> {
     let face = &fused.faces[i];
     let mut touch = Touch { crossing: Vec::new(), lines: Vec::new(), own: Vec::new(), hanging: false, across: 0.0 };
@@ -139,17 +140,19 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
     let mut own_links: Vec<Vec<usize>> = vec![Vec::new(); n];
     // Cuts across a tube's end, each seen from a piece it bounds: (that piece, the piece across the cut).
     let mut stem_ends: Vec<(usize, usize)> = Vec::new();
-    for i in 0..n {
-        for k in 0..touches[i].own.len() {
-            let edge = &fused.edges[touches[i].own[k]];
+    for (i, touch) in touches.iter_mut().enumerate() {
+        for &e in &touch.own {
+            let edge = &fused.edges[e];
             let others = edge.faces.iter().copied().filter(|&g| g != i);
-            if edge.length < touches[i].across {
+            // The cut across a tube's end parts the wall beyond the end from the wall inside the tube's wall
+            // (which the tube's patch stands for): it joins neither to the other (unless it must, below), and
+            // bounds each as a free edge would.
+            touch.hanging |= edge.stem_end;
+            if edge.length < touch.across {
                 // Shorter than an overshoot: where the crossing line stops a little before the strip does, the
                 // stub between the two is part of the cut, not what joins the piece to its patch.
-                touches[i].lines.push(&edge.points);
+                touch.lines.push(&edge.points);
             } else if edge.stem_end {
-                // The cut across a tube's end parts the wall beyond the end from the wall inside the tube's wall
-                // (which the tube's patch stands for): it joins neither to the other (unless it must, below).
                 stem_ends.extend(others.map(|g| (i, g)));
             } else {
                 own_links[i].extend(others);
@@ -157,7 +160,7 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
         }
     }
     // A cut across a tube's end still joins the pieces either side when one reaches no crossing but through the
-    // other: dropping the other would leave it loose.
+    // other: dropping the other would leave it loose. Pieces so joined are one stretch (for the body, below).
     let mut stretch: Vec<usize> = (0..n).collect();
     for (i, links) in own_links.iter().enumerate() {
         for &j in links {
@@ -171,10 +174,11 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             crosses[root] = true;
         }
     }
-    for (i, j) in stem_ends {
-        if !crosses[find(&mut stretch, i)] {
-            own_links[i].push(j);
-        }
+    let joined: Vec<(usize, usize)> = stem_ends.into_iter().filter(|&(i, _)| !crosses[find(&mut stretch, i)]).collect();
+    for (i, j) in joined {
+        own_links[i].push(j);
+        own_links[j].push(i);
+        union(&mut stretch, i, j);
     }
     // Hanging pieces that touch no other patch (an overshoot corner, the end of a strip): they anchor nothing
     // and stay only when joined to a piece that does.
@@ -205,15 +209,8 @@ pub fn find_branches(fused: &Fused, limit: &[f64]) -> Vec<Branch> {
             overshoot[i] = Some((width, t.crossing));
         }
     }
-    // Pieces joined to each other, for the body.
-    let mut parent: Vec<usize> = (0..n).collect();
-    for (i, links) in own_links.iter().enumerate() {
-        for &j in links {
-            union(&mut parent, i, j);
-        }
-    }
     // The body of each patch stays, however it hangs.
-    let body = heaviest_stretch_pieces(fused, &mut parent);
+    let body = heaviest_stretch_pieces(fused, &mut stretch);
     let mut candidates: Vec<Option<Branch>> = overshoot
         .into_iter()
         .enumerate()

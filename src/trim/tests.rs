@@ -307,3 +307,36 @@ fn a_strip_inside_a_tube_wall_is_a_branch_though_the_wall_runs_on_past_the_tube(
     fused.edges.pop();
     assert_eq!(branch_pieces(&fused), vec![3]);
 }
+
+#[test]
+fn a_strip_closed_in_by_crossings_and_a_tube_end_cut_is_still_a_branch() {
+    // Branch 1 loses its free edge to a crossing (closed in), but one of its edges is the cut across a tube's
+    // end to piece 4 (held by the main piece 0): the cut bounds it as a free edge would.
+    let mut fused = l_corner();
+    fused.edges[2].faces = vec![1, 2];
+    fused.faces[2].edges.push(2);
+    fused.faces.push(face(0, 400.0, vec![5, 6, 7]));
+    fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
+    fused.edges.push(edge(vec![4], DVec3::new(0.0, 60.0, 1.0), DVec3::new(20.0, 60.0, 1.0)));
+    fused.edges.push(edge(vec![0, 4], DVec3::new(1.0, 40.0, 1.0), DVec3::new(20.0, 40.0, 1.0)));
+    fused.faces[1].edges.push(5);
+    fused.faces[0].edges.push(7);
+    assert_eq!(branch_pieces(&fused), vec![3]);
+    fused.edges[5].stem_end = true;
+    assert_eq!(branch_pieces(&fused), vec![1, 3]);
+}
+
+#[test]
+fn a_loose_piece_beyond_a_tube_end_cut_stays_with_the_strip_that_stays() {
+    // Piece 4 (overshoot-sized, touching no other patch) is joined only by the cut across a tube's end to strip
+    // 1, which is held by the main piece 0 through a long edge of their own: both stay.
+    let mut fused = l_corner();
+    fused.faces.push(face(0, 1.0, vec![5, 6]));
+    fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
+    fused.edges.push(edge(vec![4], DVec3::new(0.0, 41.0, 1.0), DVec3::new(1.0, 41.0, 1.0)));
+    fused.edges.push(edge(vec![0, 1], DVec3::new(0.5, 0.0, 1.0), DVec3::new(0.5, 40.0, 1.0)));
+    fused.faces[1].edges.extend([5, 7]);
+    fused.faces[0].edges.push(7);
+    fused.edges[5].stem_end = true;
+    assert_eq!(branch_pieces(&fused), vec![3]);
+}

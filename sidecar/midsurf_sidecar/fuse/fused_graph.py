@@ -1,6 +1,7 @@
 """The reply of `fuse`: each face of the fused shape with its patch and measurements, each edge with its faces,
 length and points (what Rust's joint and trim decisions read)."""
 
+from collections.abc import Sequence
 from typing import Any
 
 from OCP.BRep import BRep_Tool
@@ -18,7 +19,7 @@ from ..protocol.errors import KernelError, one_line
 
 
 def describe(
-    fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int], stem_ends: list[TopoDS_Shape] = ()
+    fused: TopoDS_Shape, face_map: IndexedShapeMap, patch_of: list[int], stem_ends: Sequence[TopoDS_Shape] = ()
 ) -> dict[str, Any]:
     """The reply's `faces` (face_map: the faces of F; patch_of: the patch of each) and `edges`; `stem_ends`: edges
     of F made by a cut across a stem's end (`patch_fuse._stem_end_cuts`), flagged `stem_end`."""

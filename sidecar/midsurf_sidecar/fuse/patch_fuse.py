@@ -45,7 +45,7 @@ def fuse(
     fused, maker = TopoDS_Compound(), BRep_Builder()
     maker.MakeCompound(fused)
     owner: list[tuple[TopoDS_Shape, int]] = []
-    stem_ends = []
+    stem_ends: list[TopoDS_Shape] = []
     for members in groups.values():
         part_how = (how[0], {i for i, k in enumerate(members) if k in how[1]})
         part, part_faces, part_patch, part_ends = _fuse_one(
@@ -159,8 +159,9 @@ def _internal_edge_lines(
                 reach = diagonal(face)
                 first, last = curve.FirstParameter() - reach, curve.LastParameter() + reach
                 tools.extend(within(BRepBuilderAPI_MakeEdge(curve.Line(), first, last).Edge(), face))
-                # A tube crossing the face: a piece of one cylindrical patch on each side of the line.
-                sharing = [k for k in (face_map.FindIndex(other) - 1 for other in stems.FindFromKey(edge)) if k != i]
+                # A tube crossing the face: two faces of one cylindrical patch on the line (a seam's face is
+                # listed twice, and counts once).
+                sharing = {face_map.FindIndex(other) - 1 for other in stems.FindFromKey(edge)} - {i}
                 stem = {patch_of[k] for k in sharing}
                 if len(stem) == 1 and len(sharing) >= 2 and all(_on_cylinder(face_map, k) for k in sharing):
                     lines.append((edge, curve.Line().Direction(), stem.pop()))
@@ -173,6 +174,7 @@ def _internal_edge_lines(
 
 
 def _on_cylinder(face_map: IndexedShapeMap, k: int) -> bool:
+    """Whether face `k` of `face_map` lies on a cylinder."""
     return BRepAdaptor_Surface(TopoDS.Face(face_map.FindKey(k + 1)), False).GetType() == GeomAbs_Cylinder
 
 
@@ -180,7 +182,7 @@ def _stem_end_cuts(
     face: TopoDS_Face, lines: list[tuple[TopoDS_Edge, gp_Dir, int]], fuzzy: float
 ) -> list[TopoDS_Shape]:
     """Cuts across `face` between the ends of two of its INTERNAL `lines` (edge, direction, the patch of the tube
-    crossing the face there: a cylindrical patch with a face on each side of the line) that stand on one tube and
+    crossing the face there: two faces of one cylindrical patch share the line) that stand on one tube and
     stop inside the face abreast: a tube (a screw boss) crossing a wall that runs on past the tube's end (a rib
     standing above the boss). The lines, extended, part off the wall's stretch inside the tube; the cut parts that
     stretch again where the tube ends, so the wall's mid-surface inside the tube's wall, below the tube's end, is
@@ -188,9 +190,9 @@ def _stem_end_cuts(
     runs on as the wall's. Only a tube: two lines of a planar stem (a U-shaped boss against a wall, a box's walls
     crossing a face) hold the wall between them, not inside the stem's wall. Abreast: the cut is square to both
     lines, within `fuzzy`."""
-    ends: list[tuple[gp_Pnt, gp_Dir, int]] = []
     if len(lines) < 2:
         return []
+    ends: list[tuple[gp_Pnt, gp_Dir, int]] = []
     vertex_edges = ancestors(face, TopAbs_VERTEX, TopAbs_EDGE)
     for edge, direction, stem in lines:
         for vertex in subshapes(edge, TopAbs_VERTEX):
