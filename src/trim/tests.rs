@@ -285,17 +285,23 @@ fn the_band_past_the_walls_goes_though_it_is_the_largest_piece() {
     assert!((branches[0].width - 1.0).abs() < 1e-12);
 }
 
-#[test]
-fn a_strip_inside_a_tube_wall_is_a_branch_though_the_wall_runs_on_past_the_tube() {
-    // Piece 4 of patch 0 (the wall running on past a tube's end) is joined to branch 1 (the wall inside the
-    // tube's wall) by the cut across the tube's end, and to the main piece 0 by a long edge of their own.
-    let mut fused = l_corner();
+/// Adds piece 4 of patch 0 to `l_corner`: the wall running on past a tube's end, joined to branch 1 by a 1.0
+/// edge (5, plain: make it the cut with `stem_end`) and to the main piece 0 by a long edge of their own (7).
+fn add_wall_past_a_tube_end(fused: &mut Fused) {
     fused.faces.push(face(0, 400.0, vec![5, 6, 7]));
     fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
     fused.edges.push(edge(vec![4], DVec3::new(0.0, 60.0, 1.0), DVec3::new(20.0, 60.0, 1.0)));
     fused.edges.push(edge(vec![0, 4], DVec3::new(1.0, 40.0, 1.0), DVec3::new(20.0, 40.0, 1.0)));
     fused.faces[1].edges.push(5);
     fused.faces[0].edges.push(7);
+}
+
+#[test]
+fn a_strip_inside_a_tube_wall_is_a_branch_though_the_wall_runs_on_past_the_tube() {
+    // Piece 4 of patch 0 (the wall running on past a tube's end) is joined to branch 1 (the wall inside the
+    // tube's wall) by the cut across the tube's end, and to the main piece 0 by a long edge of their own.
+    let mut fused = l_corner();
+    add_wall_past_a_tube_end(&mut fused);
     // Any other edge that short joins piece 4 to the strip, which stays.
     assert_eq!(branch_pieces(&fused), vec![3]);
     // The cut joins nothing: the strip goes.
@@ -315,12 +321,7 @@ fn a_strip_closed_in_by_crossings_and_a_tube_end_cut_is_still_a_branch() {
     let mut fused = l_corner();
     fused.edges[2].faces = vec![1, 2];
     fused.faces[2].edges.push(2);
-    fused.faces.push(face(0, 400.0, vec![5, 6, 7]));
-    fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
-    fused.edges.push(edge(vec![4], DVec3::new(0.0, 60.0, 1.0), DVec3::new(20.0, 60.0, 1.0)));
-    fused.edges.push(edge(vec![0, 4], DVec3::new(1.0, 40.0, 1.0), DVec3::new(20.0, 40.0, 1.0)));
-    fused.faces[1].edges.push(5);
-    fused.faces[0].edges.push(7);
+    add_wall_past_a_tube_end(&mut fused);
     assert_eq!(branch_pieces(&fused), vec![3]);
     fused.edges[5].stem_end = true;
     assert_eq!(branch_pieces(&fused), vec![1, 3]);
