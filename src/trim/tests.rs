@@ -141,15 +141,21 @@ fn a_strip_attached_to_its_patch_is_not_a_branch() {
     assert_eq!(pieces, vec![3]);
 }
 
+/// Adds piece 4 of patch 0 to `l_corner`: a 1 x 1 corner touching no other patch, joined to branch 1 by edge 5
+/// (its one other edge, 6, free). The perimeter of its two listed edges is 2, its mean width 2 x 1 / 2 = 1 <=
+/// 0.75 x 2: overshoot-sized.
+fn add_corner_off_branch(fused: &mut Fused) {
+    fused.faces.push(face(0, 1.0, vec![5, 6]));
+    fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
+    fused.edges.push(edge(vec![4], DVec3::new(0.0, 41.0, 1.0), DVec3::new(1.0, 41.0, 1.0)));
+    fused.faces[1].edges.push(5);
+}
+
 #[test]
 fn a_loose_corner_joined_only_to_a_branch_goes_with_it() {
     // Piece 4 of patch 0 touches no other patch: an overshoot corner hanging off branch 1 only.
     let mut fused = l_corner();
-    fused.faces.push(face(0, 1.0, vec![5, 6]));
-    // (perimeter of its two listed edges 2, mean width 2 x 1 / 2 = 1 <= 0.75 x 2: overshoot-sized)
-    fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
-    fused.edges.push(edge(vec![4], DVec3::new(0.0, 41.0, 1.0), DVec3::new(1.0, 41.0, 1.0)));
-    fused.faces[1].edges.push(5);
+    add_corner_off_branch(&mut fused);
     let pieces = branch_pieces(&fused);
     assert_eq!(pieces, vec![1, 3, 4]);
     // Joined to the main piece instead (by an edge longer than the overshoot), it stays.
@@ -332,11 +338,9 @@ fn a_loose_piece_beyond_a_tube_end_cut_stays_with_the_strip_that_stays() {
     // Piece 4 (overshoot-sized, touching no other patch) is joined only by the cut across a tube's end to strip
     // 1, which is held by the main piece 0 through a long edge of their own: both stay.
     let mut fused = l_corner();
-    fused.faces.push(face(0, 1.0, vec![5, 6]));
-    fused.edges.push(edge(vec![1, 4], DVec3::new(0.0, 40.0, 1.0), DVec3::new(1.0, 40.0, 1.0)));
-    fused.edges.push(edge(vec![4], DVec3::new(0.0, 41.0, 1.0), DVec3::new(1.0, 41.0, 1.0)));
+    add_corner_off_branch(&mut fused);
     fused.edges.push(edge(vec![0, 1], DVec3::new(0.5, 0.0, 1.0), DVec3::new(0.5, 40.0, 1.0)));
-    fused.faces[1].edges.extend([5, 7]);
+    fused.faces[1].edges.push(7);
     fused.faces[0].edges.push(7);
     fused.edges[5].stem_end = true;
     assert_eq!(branch_pieces(&fused), vec![3]);
