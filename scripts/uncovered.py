@@ -35,8 +35,8 @@ def roles_of(part, pairs_path):
     else:
         binary = os.environ.get("MIDSURF_BIN", os.path.join(ROOT, "target", "release", "midsurf"))
         pairs = json.loads(subprocess.run([binary, "pairs", "--json", part], capture_output=True, check=True).stdout)
-    solids = [solid["pairing"]["roles"] for solid in pairs["solids"]]
-    return [(s + 1, i, role) for s, roles in enumerate(solids) for i, role in enumerate(roles)]
+    solids = [(solid["pairing"]["roles"], solid["tolerances"]["t_max"]) for solid in pairs["solids"]]
+    return [(s + 1, i, role, t_max) for s, (roles, t_max) in enumerate(solids) for i, role in enumerate(roles)]
 
 
 def named_thickness(mid, path):
@@ -91,18 +91,46 @@ def main():
 
     _, nearest_triangle, _ = igl.point_mesh_squared_distance(points[uncovered], Vi, Fi)
     nearest = face_in[nearest_triangle]
+    chord, far = material_chord(Vi, Fi, face_in, points[uncovered], nearest_triangle)
     roles = roles_of(args.part, args.pairs)
     faces, counts = np.unique(nearest, return_counts=True)
     by_role = defaultdict(float)
-    print(f"{'share':>6}  solid face  role (failed test of the nearest candidate)  centre of its uncovered points")
+    t_max = np.array([roles[f][3] if f < len(roles) else np.inf for f in nearest])
+    print(f"{'share':>6}  solid face  role (failed test of the nearest candidate)  chord  far  centre of its uncovered points")
     for rank, k in enumerate(np.argsort(-counts)):
         face, share = int(faces[k]), counts[k] / args.samples
-        solid, index, role = roles[face] if face < len(roles) else (0, face, {})
+        solid, index, role, _ = roles[face] if face < len(roles) else (0, face, {}, np.inf)
         by_role[role_key(role)] += share
         if rank < args.top:
-            centre = np.round(points[uncovered][nearest == face].mean(0), 1)
-            print(f"{share:6.3f}  {solid:5d} {index:4d}  {role_key(role):42s}  {centre}")
+            mine = nearest == face
+            centre = np.round(points[uncovered][mine].mean(0), 1)
+            far_faces = far[mine][far[mine] >= 0]
+            far_face = roles[int(np.bincount(far_faces).argmax())][1] if len(far_faces) else -1
+            print(f"{share:6.3f}  {solid:5d} {index:4d}  {role_key(role):42s}  {np.median(chord[mine]):5.2f} {far_face:4d}  {centre}")
     print("by role:", ", ".join(f"{key} {share:.3f}" for key, share in sorted(by_role.items(), key=lambda x: -x[1])))
+    ratio = chord / t_max
+    bands = [(0, 1, "chord <= t_max"), (1, 2, "t_max-2x"), (2, 4, "2x-4x"), (4, np.inf, "> 4x t_max or open")]
+    print("by material chord along the nearest face's normal:",
+          ", ".join(f"{name} {((ratio > lo) & (ratio <= hi)).sum() / args.samples:.3f}" for lo, hi, name in bands))
+
+
+def material_chord(V, F, face_of, points, triangle):
+    """The material's thickness through each point along the normal of its nearest input triangle (the sum of
+    the first hits both ways), and the input face hit on the far side of the nearest face (-1 where none)."""
+    import trimesh
+
+    mesh = trimesh.Trimesh(V, F, process=False)
+    ray = trimesh.ray.ray_pyembree.RayMeshIntersector(mesh) if trimesh.ray.has_embree else mesh.ray
+    normals = mesh.face_normals[triangle]
+    out = ev.first_hit(ray, points, normals)
+    dirs = -normals
+    locations, index, hit = ray.intersects_location(points, dirs, multiple_hits=False)
+    back = np.full(len(points), np.inf)
+    far = np.full(len(points), -1)
+    if len(index):
+        back[index] = np.linalg.norm(locations - points[index], axis=1)
+        far[index] = face_of[hit]
+    return out + back, far
 
 
 if __name__ == "__main__":

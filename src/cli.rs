@@ -62,6 +62,11 @@ pub enum Command {
         /// Print pairs, groups and roles as JSON instead of the table.
         #[arg(long)]
         json: bool,
+        /// Why a face pairs or not: every candidate partner of face FACE of solid SOLID (both numbered as in
+        /// the table, solids from 1), the pair tests' verdict on each, and the face's role in the end (rules
+        /// that judge a pair among the walls around it can still drop a pair the tests accepted).
+        #[arg(long, value_name = "SOLID:FACE", value_parser = solid_face)]
+        explain: Option<(usize, usize)>,
         #[command(flatten)]
         pairing: PairingArgs,
     },
@@ -264,7 +269,7 @@ fn draft_degrees(s: &str) -> Result<f64, String> {
 pub fn run(cli: Cli) -> Result<Exit, Error> {
     match cli.command {
         Command::Inspect { part, json, mesh } => inspect_command(part, json, mesh),
-        Command::Pairs { part, json, pairing } => pairs_command(part, json, pairing.params()),
+        Command::Pairs { part, json, explain, pairing } => pairs_command(part, json, explain, pairing.params()),
         Command::Mesh(m) => crate::mesh::run(&m),
         Command::Run(r) => crate::run::run(&crate::run::RunArgs {
             input: r.part,
@@ -345,13 +350,47 @@ struct PairsJson<'a> {
     solids: &'a [SolidPairing],
 }
 
-fn pairs_command(path: PathBuf, json: bool, params: PairingParams) -> Result<Exit, Error> {
+/// `--explain SOLID:FACE`.
+fn solid_face(text: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("'{text}' is not SOLID:FACE (e.g. 1:35: solid 1, face 35)");
+    let (solid, face) = text.split_once(':').ok_or_else(bad)?;
+    let solid: usize = solid.trim().parse().map_err(|_| bad())?;
+    let face: usize = face.trim().parse().map_err(|_| bad())?;
+    if solid == 0 {
+        return Err(format!("solids are numbered from 1: '{text}'"));
+    }
+    Ok((solid, face))
+}
+
+fn pairs_command(
+    path: PathBuf,
+    json: bool,
+    explain: Option<(usize, usize)>,
+    params: PairingParams,
+) -> Result<Exit, Error> {
     let mut sidecar = load::start_sidecar(&path, false)?;
     let part = load::load(&mut sidecar, &path, MeshRequest { mesh: true, tolerance: None })?;
     sidecar.shutdown();
     crate::checks::against_part(&params, &part).map_err(|p| Error::input(&path, p))?;
     let solids: Vec<SolidPairing> = driver::pair_part(&part, params);
     let file = path.display().to_string();
+    if let Some((solid, face)) = explain {
+        let found = part.solids.get(solid - 1).zip(solids.get(solid - 1));
+        let (graph, sp) = found.ok_or_else(|| {
+            Error::input(&path, format!("has {} solid(s), no solid {solid} to --explain", part.solids.len()))
+        })?;
+        let graph = &graph.graph;
+        if face >= graph.faces.len() {
+            let problem = format!(
+                "solid {solid} has {} faces (0 to {}), no face {face} to --explain",
+                graph.faces.len(),
+                graph.faces.len() - 1
+            );
+            return Err(Error::input(&path, problem));
+        }
+        print(&crate::output::pairs_table::explain(graph, sp, face))?;
+        return Ok(Exit::Clean);
+    }
     let text = if json {
         serde_json::to_string_pretty(&PairsJson { file, solids: &solids }).expect("pairings always serialise") + "\n"
     } else {

@@ -5,7 +5,7 @@ use std::fmt::Write;
 use crate::model::face_graph::FaceGraph;
 use crate::output::report::RoleCounts;
 use crate::pairing::driver::SolidPairing;
-use crate::pairing::{self};
+use crate::pairing::{self, FaceRole};
 
 fn faces_list(ids: &[usize]) -> String {
     const SHOWN: usize = 8;
@@ -89,4 +89,76 @@ pub fn render(out: &mut String, index: usize, graph: &FaceGraph, sp: &SolidPairi
         sp.paired_skin_share * 100.0
     )
     .unwrap();
+}
+
+/// Every candidate partner of `face` with the pair tests' verdict, then the face's role in the end.
+pub fn explain(graph: &FaceGraph, sp: &SolidPairing, face: usize) -> String {
+    let describe = |f: usize| {
+        let g = &graph.faces[f];
+        let [length, width] = graph.face_size(f);
+        format!("face {f} ({}, {:.2} mm2, about {length:.2} x {width:.2} mm)", g.surface.kind_name(), g.area)
+    };
+    let mut out = format!("{}\n", describe(face));
+    if !sp.class.is_thin_walled() {
+        writeln!(out, "  not paired: {}", sp.class.describe()).unwrap();
+        return out;
+    }
+    let tol = &sp.tolerances;
+    write!(out, "  t_max {:.4} mm", tol.t_max).unwrap();
+    if tol.t_bound > tol.t_max {
+        write!(out, "; thicker walls up to {:.4} mm when thin for their extent", tol.t_bound).unwrap();
+    }
+    out.push('\n');
+    let tested = pairing::test_candidates(graph, tol);
+    let mine: Vec<_> = tested.iter().filter(|(a, b, _)| *a == face || *b == face).collect();
+    if mine.is_empty() {
+        writeln!(out, "  no candidate: no face within {:.4} mm faces it", tol.t_bound).unwrap();
+    }
+    // Faces of another kind or turned away say little: counted, not listed.
+    let (mine, turned): (Vec<_>, Vec<_>) = mine.into_iter().partition(|(_, _, verdict)| {
+        !matches!(verdict, Err(pairing::Rejection::Incompatible { .. } | pairing::Rejection::Angle { .. }))
+    });
+    if !turned.is_empty() {
+        writeln!(out, "  {} candidate(s) of another surface kind or turned too far from opposite", turned.len())
+            .unwrap();
+    }
+    for (a, b, verdict) in mine {
+        let other = if *a == face { *b } else { *a };
+        let verdict = match verdict {
+            Ok(p) => format!(
+                "pair ({}, t {:.4}, {:.4}..{:.4}, overlap {:.2} mm2)",
+                p.kind.name(),
+                p.thickness.mean,
+                p.thickness.min,
+                p.thickness.max,
+                p.overlap_area
+            ),
+            Err(r) => format!("rejected: {}", r.describe()),
+        };
+        writeln!(out, "  with {}: {verdict}", describe(other)).unwrap();
+    }
+    let role = &sp.pairing.roles[face];
+    let kept: Vec<String> = sp
+        .pairing
+        .pairs
+        .iter()
+        .filter(|p| p.faces.contains(&face))
+        .map(|p| format!("{}", if p.faces[0] == face { p.faces[1] } else { p.faces[0] }))
+        .collect();
+    let role = match role {
+        FaceRole::Pair { group, .. } => format!("pair, group {group}, with faces {}", kept.join(", ")),
+        FaceRole::Thickness { group } => format!("thickness face of group {group}"),
+        FaceRole::Connecting { groups, near_miss } => format!(
+            "connecting groups {groups:?}{}",
+            near_miss.as_ref().map_or(String::new(), |m| format!(
+                "; nearest miss face {}: {}",
+                m.candidate,
+                m.rejection.describe()
+            ))
+        ),
+        FaceRole::Suppressed => "suppressed (a small feature, left out of pairing)".to_string(),
+        FaceRole::Unpaired { .. } => format!("unpaired: {}", role.unpaired_reason().unwrap_or_default()),
+    };
+    writeln!(out, "  in the end: {role}").unwrap();
+    out
 }
