@@ -678,6 +678,18 @@ def plate_thick_pad() -> Fixture:
     return Fixture(single_solid(part), 240 * 140 * 1.5 + 50 * 50 * 2.5, 11)
 
 
+def plate_small_thick_pads() -> Fixture:
+    """Plate 100 x 60 x 1 with two pads 8 x 8 rising 1.4 on its top (2.4 thick there), at x 20..28 and 72..80,
+    y 26..34: the class of a wall thicker than the part's gauge over a small area (a lug, a thickened land, a
+    short thick band round a corner), thicker than a fifth of its side but no more than a third: a square slab of
+    those proportions is as thin as a thin-walled solid may be (2V/A at most 0.2 of its middle extent), so it is
+    a wall. Each pad's mid-surface (z = 1.2, thickness 2.4) meets the plate's (z = 0.5) at a step.
+    Faces: 16 (plate: top, bottom, 4 sides; each pad: top and 4 sides). Volume: 100 * 60 * 1 + 2 * 8 * 8 * 1.4.
+    """
+    part = box(0, 0, 0, 100, 60, 1) + box(20, 26, 1, 8, 8, 1.4) + box(72, 26, 1, 8, 8, 1.4)
+    return Fixture(single_solid(part), 100 * 60 * 1 + 2 * 8 * 8 * 1.4, 16)
+
+
 def plate_chamfered_pad() -> Fixture:
     """plate_thick_pad with the pad's sides chamfered 45 degrees over its whole height (a 50 x 50 footprint, a
     45 x 45 top): the class of a thicker level of a wall whose boundary slopes down to the thinner level (a
@@ -1356,6 +1368,7 @@ PARTS: list[Callable[[], Fixture]] = [
     box_drafted_rounded,
     tapered_plate,
     plate_thick_pad,
+    plate_small_thick_pads,
     plate_chamfered_pad,
     plate_lip,
     rib_low_with_hook,

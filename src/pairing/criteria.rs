@@ -12,16 +12,21 @@ use crate::geom::angle_between;
 use crate::model::face_graph::{Convexity, EdgeId, Face, FaceGraph, FaceId, Mesh, Surface};
 use crate::model::tolerance::Tolerances;
 
+/// The thickest a wall may be for the length of its shorter skin, as a share of that length: a square slab of
+/// these proportions (thickness d, sides d / THICK_WALL_SHARE) is exactly as thin as a thin-walled solid may be
+/// (`wall_class`: 2V/A = CHUNKY_SHARE x its middle extent, and 2V/A = d / (1 + 2 x THICK_WALL_SHARE) for it).
+const THICK_WALL_SHARE: f64 = CHUNKY_SHARE / (1.0 - 2.0 * CHUNKY_SHARE);
+
 /// The largest thickness a pair of skins `sizes` (each `[length, width]`, see [`FaceGraph::face_size`]) may
-/// have and be a wall: t_max, or more, up to t_bound, when the wall is thin for its extent, as a thin-walled
-/// solid is: at most CHUNKY_SHARE of the length of the shorter skin, and no more than the wider skin is wide
-/// (a wall is at least as wide as it is thick; a narrower pair goes through the stub tests as any other). A low
-/// thick rim along a tray's edge is a wall; a lug's sides (as long as wide) and a pin's flats (both narrower than
-/// they stand apart) are not.
+/// have and be a wall: t_max, or more, up to t_bound, when the wall is thin for its extent by the measure that
+/// classifies solids: at most THICK_WALL_SHARE of the length of the shorter skin, and no more than the wider
+/// skin is wide (a wall is at least as wide as it is thick; a narrower pair goes through the stub tests as any
+/// other). A low thick rim along a tray's edge, a lug up to a third as thick as long, a short thick band round a
+/// corner are walls; a block as thick as long and a pin's flats (both narrower than they stand apart) are not.
 pub fn wall_limit(tol: &Tolerances, sizes: [[f64; 2]; 2]) -> f64 {
     let length = sizes[0][0].min(sizes[1][0]);
     let width = sizes[0][1].max(sizes[1][1]);
-    tol.t_max.max((CHUNKY_SHARE * length).min(width).min(tol.t_bound))
+    tol.t_max.max((THICK_WALL_SHARE * length).min(width).min(tol.t_bound))
 }
 
 /// Tests whether faces `a` and `b` are the two skins of one wall.

@@ -92,17 +92,23 @@ fn band(length: f64, width: f64, z: f64) -> crate::model::face_graph::FaceGraph 
 
 #[test]
 fn a_wall_thicker_than_t_max_pairs_when_thin_for_its_extent() {
-    // Over t_max 3, when the solid's safety bound allows it, a wall is thin for its extent: at most a fifth of
-    // its length and no more than its width. A long low band (a tray's thick rim, 60 x 5): up to 5 thick.
+    // Over t_max 3, when the solid's safety bound allows it, a wall is thin for its extent: at most a third of
+    // its length (a square slab that thick is as thin as a thin-walled solid may be) and no more than its
+    // width. A long low band (a tray's thick rim, 60 x 5): up to 5 thick.
     let bounded = Tolerances { t_bound: 10.0, ..tol() };
     let p = criteria::test_pair(&band(60.0, 5.0, 4.5), 0, 1, &bounded).unwrap();
     assert!((p.thickness.mean - 4.5).abs() < 1e-9);
     let err = criteria::test_pair(&band(60.0, 5.0, 5.1), 0, 1, &bounded).unwrap_err();
     assert!(matches!(err, Rejection::Distance { limit, .. } if (limit - 5.0).abs() < 1e-9), "{err:?}");
-    // A square 20 x 20 (a lug's sides): a fifth of its side.
-    assert!(criteria::test_pair(&band(20.0, 20.0, 3.9), 0, 1, &bounded).is_ok());
-    let err = criteria::test_pair(&band(20.0, 20.0, 4.1), 0, 1, &bounded).unwrap_err();
-    assert!(matches!(err, Rejection::Distance { limit, .. } if (limit - 4.0).abs() < 1e-9), "{err:?}");
+    // A square 20 x 20 (a lug's sides): a third of its side.
+    assert!(criteria::test_pair(&band(20.0, 20.0, 6.6), 0, 1, &bounded).is_ok());
+    let err = criteria::test_pair(&band(20.0, 20.0, 6.7), 0, 1, &bounded).unwrap_err();
+    assert!(matches!(err, Rejection::Distance { limit, .. } if (limit - 20.0 / 3.0).abs() < 1e-9), "{err:?}");
+    // A short thick band (a rounded corner of a thicker lug, 9 x 6): 3 thick, where a fifth would stop at 1.8.
+    let small = Tolerances { t_max: 1.2, t_bound: 10.0, ..tol() };
+    let p = criteria::test_pair(&band(9.0, 6.0, 2.9), 0, 1, &small);
+    assert!(p.is_ok(), "{p:?}");
+    assert!(criteria::test_pair(&band(9.0, 6.0, 3.1), 0, 1, &small).is_err());
     // At t_max when t_max is the user's hard limit, and the bound holds whatever the extent.
     assert!(criteria::test_pair(&band(60.0, 40.0, 3.9), 0, 1, &tol()).is_err());
     assert!(criteria::test_pair(&band(60.0, 40.0, 9.9), 0, 1, &bounded).is_ok());
