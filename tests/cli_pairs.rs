@@ -46,3 +46,17 @@ fn a_face_or_solid_out_of_range_is_a_one_line_error() {
     assert_eq!(out.code, 2, "stderr: {}", out.stderr);
     assert!(out.stderr.contains("'10' is not SOLID:FACE"), "{}", out.stderr);
 }
+
+#[test]
+fn a_t_max_equal_to_the_gauge_pairs_every_wall_of_that_gauge() {
+    // A drafted, rounded box 2 thick: its walls measure 2 give or take the kernel's rounding. Given as
+    // --t-max, the gauge pairs them all, as the estimate (3 here) does.
+    let out = outcome(midsurf().args(["pairs", "fixtures/box_drafted_rounded.step", "--t-max", "2"]));
+    assert_eq!(out.code, 0, "stderr: {}", out.stderr);
+    assert!(
+        out.stdout.contains("roles: pair 18, thickness 1, connecting 0, suppressed 0, unpaired 0"),
+        "{}",
+        out.stdout
+    );
+    assert!(out.stdout.contains("paired: 97.3% of the area"), "{}", out.stdout);
+}

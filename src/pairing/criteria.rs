@@ -29,6 +29,12 @@ pub fn wall_limit(tol: &Tolerances, sizes: [[f64; 2]; 2]) -> f64 {
     tol.t_max.max((THICK_WALL_SHARE * length).min(width).min(tol.t_bound))
 }
 
+/// A thickness over `limit` by more than the part's length tolerance: a wall as thick as t_max (the gauge a
+/// user gives as --t-max) measures it give or take the kernel's rounding, and is within it.
+pub fn over(thickness: f64, limit: f64, tol: &Tolerances) -> bool {
+    thickness > limit + tol.point
+}
+
 /// Tests whether faces `a` and `b` are the two skins of one wall.
 pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> Result<Pair, Rejection> {
     let (fa, fb) = (&graph.faces[a], &graph.faces[b]);
@@ -58,7 +64,7 @@ pub fn test_pair(graph: &FaceGraph, a: FaceId, b: FaceId, tol: &Tolerances) -> R
         }
         result => result?,
     };
-    if thickness.mean > t_max {
+    if over(thickness.mean, t_max, tol) {
         reject_stacked(graph, [a, b], thickness.mean)?;
     }
     reject_stub(graph, [a, b], thickness.mean, tol)?;
@@ -529,7 +535,7 @@ fn planes(
         _ => draft_thickness(fa, fb, mid_normal, (ca - cb) / scale, thickness_at),
     };
     // Distance first: it is cheap, and most candidates from the box search fail it.
-    if thickness.max > tol.t_max {
+    if over(thickness.max, tol.t_max, tol) {
         return Err(Rejection::Distance { distance: thickness.max, limit: tol.t_max });
     }
     let ov = overlap::planar(mesh(fa)?, mesh(fb)?, mid_normal);
@@ -585,7 +591,7 @@ fn radial_gap((ra, convex_a): (f64, bool), (rb, convex_b): (f64, bool), tol: &To
     if t <= tol.point {
         return Err(Rejection::NotFacing);
     }
-    if t > tol.t_max {
+    if over(t, tol.t_max, tol) {
         return Err(Rejection::Distance { distance: t, limit: tol.t_max });
     }
     Ok(t)
@@ -610,7 +616,7 @@ fn parallel_cones(
     if t <= tol.point {
         return Err(Rejection::NotFacing);
     }
-    if t > tol.t_max {
+    if over(t, tol.t_max, tol) {
         return Err(Rejection::Distance { distance: t, limit: tol.t_max });
     }
     Ok(Some(t))

@@ -294,7 +294,8 @@ pub fn assemble(graph: &FaceGraph, tested: &[Tested], pairable: &[bool], tol: &T
     // Walls over t_max (thin for their extent, `criteria::wall_limit`) are settled after the others, against
     // them: they take nothing from the walls within t_max (whose narrow faces the context rules judge by the
     // walls around them), and go through the same rules themselves.
-    let (mut pairs, mut thick): (Vec<Pair>, Vec<Pair>) = pairs.into_iter().partition(|p| p.thickness.mean <= tol.t_max);
+    let (mut pairs, mut thick): (Vec<Pair>, Vec<Pair>) =
+        pairs.into_iter().partition(|p| !criteria::over(p.thickness.mean, tol.t_max, tol));
     reject_in_context(graph, &mut pairs, &[], &mut near, pairable, tol, tol.t_max);
     reject_in_context(graph, &mut thick, &pairs, &mut near, pairable, tol, f64::INFINITY);
     if !thick.is_empty() {

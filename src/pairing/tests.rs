@@ -81,6 +81,14 @@ fn distance_limit() {
     assert!(matches!(err, Rejection::Distance { distance, .. } if (distance - 3.01).abs() < 1e-9), "{err:?}");
 }
 
+#[test]
+fn a_wall_as_thick_as_t_max_pairs_whatever_the_rounding() {
+    // t_max 3 on a part of diagonal 200: its length tolerance is 2e-4. A wall measured a rounding over 3 is 3.
+    assert!(pair_of(slab_faces(3.0 + 1e-8)).is_ok());
+    assert!(pair_of(slab_faces(3.0 + 1e-4)).is_ok());
+    assert!(pair_of(slab_faces(3.0 + 1e-3)).is_err());
+}
+
 /// A `length` x `width` top (+z) at height `z` over its bottom (-z) at 0, their edges `length` and `width` round.
 fn band(length: f64, width: f64, z: f64) -> crate::model::face_graph::FaceGraph {
     let faces = vec![
