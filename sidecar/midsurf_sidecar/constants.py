@@ -14,6 +14,9 @@ import math
 # exactly on a known surface, and the floor of a tolerance that comes in as 0 (a fuzzy value of 0 still needs the
 # kernel's own least tolerance to classify a point or merge coplanar faces).
 CONFUSION = 1e-7
+# OCCT's Precision::Angular() (radians): directions closer than this are the same to the kernel. Offsets of a
+# plane or a cylinder keep its axis exactly.
+ANGULAR = 1e-12
 # OCCT's Precision::PConfusion(): the least difference of two parameters (of a curve, or of a face's UV) the
 # kernel tells apart; the tolerance of 2D curve intersections in a face's parameters.
 PARAMETRIC_CONFUSION = 1e-9

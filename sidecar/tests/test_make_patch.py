@@ -660,3 +660,45 @@ def test_the_cut_to_the_solid_splits_by_the_faces_that_can_cut():
     shift = gp_Trsf()
     shift.SetTranslation(gp_Vec(0.0, 0.0, 500.0))
     assert SolidBoundary(tube).faces_near(TopoDS.Face(mid.Moved(TopLoc_Location(shift))), 1e-6, []) is None
+
+
+def test_the_separation_bound_never_exceeds_the_distance_and_finds_a_mid_patch_half_a_wall_from_its_skins():
+    """separation_bound is a lower bound on the exact distance (BRepExtrema) for parallel planes and cylinders on
+    parallel axes, 0 for other pairs: a tube R 20 / R 18 with its outer cylinder offset to R 19, the same face
+    moved 0.3 off the axis, and a box's faces."""
+    from build123d import Box, Cylinder
+    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+    from OCP.GeomAbs import GeomAbs_Cylinder
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopLoc import TopLoc_Location
+    from OCP.gp import gp_Trsf, gp_Vec
+
+    from midsurf_sidecar.geom.solid_boundary import separation_bound
+    from midsurf_sidecar.patch.face_offset import offset_face
+
+    def faces_of(shape):
+        found = indexed_map(shape, TopAbs_FACE)
+        return [TopoDS.Face(found.FindKey(i)) for i in range(1, found.Size() + 1)]
+
+    def moved(face, x):
+        shift = gp_Trsf()
+        shift.SetTranslation(gp_Vec(x, 0.0, 0.0))
+        return TopoDS.Face(face.Moved(TopLoc_Location(shift)))
+
+    tube = faces_of((Cylinder(20, 40) - Cylinder(18, 40)).wrapped)
+    cylinders = [f for f in tube if BRepAdaptor_Surface(f).GetType() == GeomAbs_Cylinder]
+    outer, inner = sorted(cylinders, key=lambda f: -BRepAdaptor_Surface(f).Cylinder().Radius())
+    mid = offset_face(outer, -1.0)
+    assert separation_bound(mid, outer) == pytest.approx(1.0, abs=1e-6)
+    assert separation_bound(mid, inner) == pytest.approx(1.0, abs=1e-6)
+    assert separation_bound(moved(mid, 0.3), outer) == pytest.approx(0.7, abs=1e-6)
+    box = faces_of(Box(10, 20, 30).wrapped)
+    planes = [(a, b) for a in box for b in box if not a.IsSame(b)]
+    pairs = [(mid, f) for f in tube] + [(moved(mid, 0.3), outer)] + planes + [(mid, box[0])]
+    for a, b in pairs:
+        exact = BRepExtrema_DistShapeShape(a, b).Value()
+        assert separation_bound(a, b) <= exact + 1e-9
+    # Opposite sides of the box: their separation; adjacent sides and mixed kinds: no bound.
+    assert sorted(round(separation_bound(a, b), 6) for a, b in planes if separation_bound(a, b) > 0) == sorted(
+        [10.0, 10.0, 20.0, 20.0, 30.0, 30.0])
+    assert separation_bound(mid, box[0]) == 0.0
