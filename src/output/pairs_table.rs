@@ -138,13 +138,8 @@ pub fn explain(graph: &FaceGraph, sp: &SolidPairing, face: usize) -> String {
         writeln!(out, "  with {}: {verdict}", describe(other)).unwrap();
     }
     let role = &sp.pairing.roles[face];
-    let kept: Vec<String> = sp
-        .pairing
-        .pairs
-        .iter()
-        .filter(|p| p.faces.contains(&face))
-        .map(|p| format!("{}", if p.faces[0] == face { p.faces[1] } else { p.faces[0] }))
-        .collect();
+    let kept: Vec<String> =
+        sp.pairing.pairs.iter().filter(|p| p.faces.contains(&face)).map(|p| p.other(face).to_string()).collect();
     let role = match role {
         FaceRole::Pair { group, .. } => format!("pair, group {group}, with faces {}", kept.join(", ")),
         FaceRole::Thickness { group } => format!("thickness face of group {group}"),
