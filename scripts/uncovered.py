@@ -122,16 +122,22 @@ def material_chord(V, F, face_of, points, triangle):
     mesh = trimesh.Trimesh(V, F, process=False)
     ray = trimesh.ray.ray_pyembree.RayMeshIntersector(mesh) if trimesh.ray.has_embree else mesh.ray
     normals = mesh.face_normals[triangle]
-    out = ev.first_hit(ray, points, normals)
-    dirs = -normals
-    locations, index, hit = ray.intersects_location(points, dirs, multiple_hits=False)
-    back = np.full(len(points), np.inf)
-    far = np.full(len(points), -1)
-    if len(index):
-        back[index] = np.linalg.norm(locations - points[index], axis=1)
-        far[index] = face_of[hit]
+    out, _ = first_hits(ray, points, normals, face_of)
+    back, far = first_hits(ray, points, -normals, face_of)
     return out + back, far
 
+
+def first_hits(ray, origins, dirs, face_of):
+    """Distance to the first hit along each ray (inf where none), as the judge's first_hit measures it, and the
+    input face hit there (-1 where none)."""
+    locations, index, hit = ray.intersects_location(origins, dirs, multiple_hits=False)
+    distance = np.full(len(origins), np.inf)
+    face = np.full(len(origins), -1)
+    lengths = np.linalg.norm(locations - origins[index], axis=1) if len(index) else np.zeros(0)
+    for k in np.argsort(-lengths):  # nearest last: it is the one kept
+        distance[index[k]] = lengths[k]
+        face[index[k]] = face_of[hit[k]]
+    return distance, face
 
 if __name__ == "__main__":
     main()
