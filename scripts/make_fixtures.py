@@ -1137,6 +1137,23 @@ def rib_over_low_boss() -> Fixture:
     return Fixture(part, volume, 17)
 
 
+def rib_end_at_boss_off_axis() -> Fixture:
+    """Plate 100 x 60 x 2 (x -50..50, y -30..30) with a screw boss (outside R 3.5, blind bore R 1.5, z 2..22) on
+    the axis (-30, 0), and a rib 1.8 thick (y 1.0..2.8, mid-plane y = 1.9) from x = -27.13, 0.07 into the
+    boss's outside at the rib's mid-plane, to 30, z 2..30: it ends against the boss's side off the boss's axis
+    and stands 8 above the boss. The class: a rib ending against a boss lower than itself, its mid-plane passing
+    beside the boss's axis (moulded housings: ribs tied to bosses at their sides). The rib's end meets the
+    boss's mid-cylinder (R 2.5) up to the boss's top and is the part's boundary above it, so the strip grown from
+    the end drops from the cylinder's distance to a stub at z = 22, part way between two of the probe's samples.
+    Mid-surface: plate z = 1, the boss's cylinder R 2.5, the rib's plane y = 1.9 from the cylinder (below the
+    boss's top) or its end (above it) to x = 30. Faces: 15 (the plate's 6, the boss's outside and top, the bore
+    and its floor, the rib's sides, top and free end, and its end above the boss). Volume: the built solid's.
+    """
+    part = box(-50, -30, 0, 100, 60, 2) + cylinder_z(-30, 0, 2, 3.5, 20) + box(-27.13, 1.0, 2, 57.13, 1.8, 28)
+    part = single_solid(part - cylinder_z(-30, 0, 2, 1.5, 20))
+    return Fixture(part, part.volume, 15)
+
+
 def rib_end_over_boss() -> Fixture:
     """Plate 100 x 60 x 2 with a screw boss (outside R 3.5, bore R 1.5 through the plate, z 2..20) on the axis
     (50, 30), and a rib 1.6 thick (y 30..31.6, mid-plane y = 30.8) from x = 20 to 53.65, z 2..28: it runs
@@ -1395,6 +1412,7 @@ PARTS: list[Callable[[], Fixture]] = [
     bosses_joined_walls,
     boss_rib_through_bore,
     rib_end_at_boss,
+    rib_end_at_boss_off_axis,
     rib_in_boss_wall,
     rib_into_boss,
     rib_through_boss,

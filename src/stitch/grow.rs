@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use super::bridge;
 use super::edges::{freeform_curve, open, open_on_level, straight, to_rim, RimGrowth};
 use super::joint::{self, Verdict};
-use super::{kept_faces, trim, JointReport, PatchInfo};
+use super::{kept_faces, probe, trim, JointReport, PatchInfo};
 use crate::geom::inside::SolidMesh;
 use crate::kernel::protocol::{CornerRequest, Extended, GatherPart, Gathered, MadeStrip, Request, StripRequest};
 use crate::kernel::{FuseKind, Kernel, SidecarError};
@@ -63,10 +63,29 @@ pub(super) fn grow<K: Kernel>(
     let thickness: Vec<f64> = patches.iter().map(|p| p.thickness).collect();
     let patch_of: Vec<usize> = fused.faces.iter().map(|f| f.patch).collect();
 
+    let decide = |edge: usize, face: usize, p: &EdgeProbe| match pass {
+        Pass::Joints | Pass::Partners => {
+            let open = open(fused, face, p, patches, solids);
+            let info = &patches[patch_of[face]];
+            let through = |k, length| {
+                let step = joint::PROBE_STEP * info.thickness;
+                joint::through_material(p, k, length, step, info.to_mid, |q| solids[info.solid].contains(q))
+            };
+            // A curved edge of a freeform patch keeps its neighbours' lengths at the rim (`freeform_curve`).
+            let stubs = !freeform_curve(info, &fused.edges[edge]);
+            joint::decide(patch_of[face], open, p, &patch_of, &thickness, info.reach, stubs, through)
+        }
+        // Only growth to the rim; an edge that found no partner before is not counted again.
+        Pass::Rims => Verdict::Rim,
+    };
+    let mut verdicts: Vec<Verdict> = free.iter().zip(probes).map(|(&(edge, face), p)| decide(edge, face, p)).collect();
+    let dense = dense_probes(kernel, fused, keep, free, &mut verdicts, patches, &decide)?;
+
     // Per free edge: the strip it grows with its joint key, if any; and the open edges the step search sees.
     let mut grows: Vec<Option<Planned>> = Vec::new();
     let mut open_edges: Vec<OpenEdge> = Vec::new();
-    for (k, (&(edge, face), p)) in free.iter().zip(probes).enumerate() {
+    for (k, ((&(edge, face), p), verdict)) in free.iter().zip(probes).zip(verdicts).enumerate() {
+        let p = dense[k].as_ref().unwrap_or(p);
         let patch = patch_of[face];
         let length = fused.edges[edge].length;
         // The edge as the step search sees it when open with no partner; each verdict below adjusts it.
@@ -81,21 +100,6 @@ pub(super) fn grow<K: Kernel>(
             open: true,
             level: false,
             to_rim: false,
-        };
-        let verdict = match pass {
-            Pass::Joints | Pass::Partners => {
-                let open = open(fused, face, p, patches, solids);
-                let info = &patches[patch];
-                let through = |k, length| {
-                    let step = joint::PROBE_STEP * info.thickness;
-                    joint::through_material(p, k, length, step, info.to_mid, |q| solids[info.solid].contains(q))
-                };
-                // A curved edge of a freeform patch keeps its neighbours' lengths at the rim (`freeform_curve`).
-                let stubs = !freeform_curve(info, &fused.edges[edge]);
-                joint::decide(patch, open, p, &patch_of, &thickness, info.reach, stubs, through)
-            }
-            // Only growth to the rim; an edge that found no partner before is not counted again.
-            Pass::Rims => Verdict::Rim,
         };
         let grow = match verdict {
             Verdict::Rim | Verdict::Unresolved if pass == Pass::Partners => None,
@@ -377,6 +381,39 @@ const CORNER_SAME_POINT_FUZZY: f64 = 10.0;
 const CORNER_SAME_POINT_MIN: f64 = 1e-9;
 /// Edges whose outward directions are within this angle (degrees) continue each other: no notch between them.
 const CORNER_CONTINUING_DEG: f64 = 10.0;
+
+/// Per free edge, its probe made again with [`joint::DENSE_SAMPLES`] when it is straight and its partner ends
+/// part way along it ([`joint::Extension::rim_ends`]), all such edges in one kernel call, its verdict in
+/// `verdicts` replaced by the dense probe's; None for the others, and when the dense probe does not tell the same
+/// joint (partner and kind) as the first. `decide(edge, face, probe)` is the pass's verdict on an edge.
+fn dense_probes<K: Kernel>(
+    kernel: &mut K,
+    fused: &Fused,
+    keep: &[bool],
+    free: &[(usize, usize)],
+    verdicts: &mut [Verdict],
+    patches: &[PatchInfo],
+    decide: &impl Fn(usize, usize, &EdgeProbe) -> Verdict,
+) -> Result<Vec<Option<EdgeProbe>>, SidecarError> {
+    let mut dense = vec![None; free.len()];
+    let flagged: Vec<usize> = (0..free.len())
+        .filter(|&k| matches!(&verdicts[k], Verdict::Extend(x) if x.rim_ends && straight(&fused.edges[free[k].0])))
+        .collect();
+    if flagged.is_empty() {
+        return Ok(dense);
+    }
+    let edges: Vec<(usize, usize)> = flagged.iter().map(|&k| free[k]).collect();
+    let again = probe(kernel, fused, &edges, kept_faces(keep), patches, joint::DENSE_SAMPLES)?;
+    for (k, p) in flagged.into_iter().zip(again) {
+        let (edge, face) = free[k];
+        let (Verdict::Extend(first), Verdict::Extend(x)) = (&verdicts[k], decide(edge, face, &p)) else { continue };
+        if x.partner == first.partner && x.kind == first.kind {
+            verdicts[k] = Verdict::Extend(x);
+            dense[k] = Some(p);
+        }
+    }
+    Ok(dense)
+}
 
 /// How close two ends must be to be one corner, for a fuse of fuzzy value `fuzzy`.
 fn same_point(fuzzy: f64) -> f64 {

@@ -34,6 +34,10 @@ pub const RIM_TEST: f64 = 0.5;
 pub const RIM_STUB: f64 = 0.02;
 /// Samples per free edge (ends included): enough to follow a curved edge or a tilted partner.
 pub const SAMPLES: usize = 5;
+/// Samples of an edge probed again because its partner ends part way along it ([`Extension::rim_ends`]): eight
+/// times as dense, so its strip drops to the rim stub within an eighth of the first spacing of where the partner
+/// ends, not along a slope from one sample to the next that leaves a wedge of the material unstitched.
+pub const DENSE_SAMPLES: usize = (SAMPLES - 1) * 8 + 1;
 /// Farthest a free edge with no partner grows to the part's boundary, as a share of its patch thickness (plus
 /// the rim tolerance, for the meshes' chords): a wall's end rounded on both sides lies at most half a thickness
 /// past its skins' edges (a full round). Farther material is another wall or a block, not the rim.
@@ -72,6 +76,10 @@ pub struct Extension {
     pub lengths: Vec<f64>,
     /// Median distance to the partner over the samples that met it (no overshoot).
     pub distance: f64,
+    /// Whether a run of samples at an end of the edge is on the rim (the partner ends part way along the edge,
+    /// past it the edge is the part's boundary: a rib standing above the boss it runs into): the strip's length
+    /// drops there from the partner's distance to a stub.
+    pub rim_ends: bool,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -175,14 +183,16 @@ pub fn decide(
     distances.sort_by(f64::total_cmp);
     let distance = distances[distances.len() / 2];
     let own = thickness[patch];
-    let reached = if stubs {
+    let (reached, rim_ends) = if stubs {
         // The way out is tested (rays) only along the runs at the ends.
         let on_rim = |k: usize| reached[k].is_none() && !through(k, RIM_TEST * own);
-        stubs_at_ends(reached.clone(), on_rim, RIM_STUB * own)
+        let stubbed = stubs_at_ends(reached.clone(), on_rim, RIM_STUB * own);
+        let rim_ends = stubbed != reached;
+        (stubbed, rim_ends)
     } else {
-        reached
+        (reached, false)
     };
-    Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached), distance })
+    Verdict::Extend(Extension { kind, partner, lengths: fill_gaps(&reached), distance, rim_ends })
 }
 
 /// `reached` with the samples of a run at either end of the edge that met no partner and whose way out leaves
@@ -221,6 +231,11 @@ pub fn through_material(
     };
     let start = points[k] + along.normalize_or_zero() * step.min(0.5 * along.length());
     let at = |s: f64| start + probe.outward[k] * s + probe.normals[k] * to_mid;
+    // A way shorter than a step is tested halfway: past a partner's end (a rib's end beside a boss, just above
+    // the boss's top) the short way to the partner's wall runs through air.
+    if length <= step {
+        return length <= 0.0 || contains(at(0.5 * length));
+    }
     (1..).map(|j| j as f64 * step).take_while(|&s| s < length).all(|s| contains(at(s)))
 }
 

@@ -195,3 +195,33 @@ fn only_runs_at_the_ends_of_the_edge_grow_stubs() {
     let on_rim = [false, true, false, true, true];
     assert_eq!(stubs_at_ends(reached, |k| on_rim[k], 0.1), vec![Some(1.0), None, Some(1.0), Some(0.1), Some(0.1)]);
 }
+
+#[test]
+fn a_way_shorter_than_a_step_is_tested_halfway() {
+    // A rib's end at x = 0 (samples up z, facing -x) beside a boss whose wall begins 0.25 away and whose top is
+    // at z = 1.5: a sample at z = 2 (over the boss) is 0.25 from the boss's wall through air, one at z = 1
+    // through material; the step (0.45) is longer than the way.
+    let mut p = probe(vec![Vec::new(); 3]);
+    p.points = (0..3).map(|k| DVec3::new(0.0, 0.0, k as f64)).collect();
+    p.outward = vec![-DVec3::X; 3];
+    p.normals = vec![DVec3::Y; 3];
+    let rib_and_boss = |q: DVec3| q.z < 1.5 || q.x >= 0.0;
+    let through = |k, length| through_material(&p, k, length, 0.45, 0.0, rib_and_boss);
+    assert!(through(1, 0.25), "below the boss's top the way runs through the boss");
+    assert!(!through(2, 0.25), "above it the way runs through air");
+    assert!(through(2, 0.0), "no way at all is no crossing");
+}
+
+#[test]
+fn a_partner_ending_part_way_along_the_edge_leaves_rim_ends() {
+    // Samples 0..2 meet the partner's face; 3 and 4 meet nothing and their way out leaves the material at once.
+    let mut hits = vec![vec![hit(2, 1.0, 0.0)]; 3];
+    hits.extend(vec![Vec::new(); 2]);
+    let p = probe(hits);
+    let through = |k: usize, _| k < 3;
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, true, through) else { panic!() };
+    assert!(e.rim_ends);
+    let p = probe(vec![vec![hit(2, 1.0, 0.0)]; 5]);
+    let Verdict::Extend(e) = decide(0, true, &p, &PATCH_OF, &THICKNESS, 3.0, true, |_, _| true) else { panic!() };
+    assert!(!e.rim_ends);
+}

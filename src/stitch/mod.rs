@@ -97,19 +97,21 @@ fn free_edges(fused: &Fused, keep: &[bool]) -> Vec<FreeEdge> {
         .collect()
 }
 
+/// The free edges `free` of `fused` probed at `samples` points each, rays meeting the faces `targets`.
 fn probe<K: Kernel>(
     kernel: &mut K,
     fused: &Fused,
     free: &[FreeEdge],
     targets: Vec<usize>,
     patches: &[PatchInfo],
+    samples: usize,
 ) -> Result<Vec<EdgeProbe>, SidecarError> {
     if free.is_empty() {
         return Ok(Vec::new());
     }
     let edges = free.iter().map(|&(edge, face)| EdgeRef { edge, face }).collect();
     let reach = patches.iter().map(|p| p.reach).fold(0.0, f64::max);
-    kernel.probe_edges(fused.handle, edges, targets, joint::SAMPLES, reach)
+    kernel.probe_edges(fused.handle, edges, targets, samples, reach)
 }
 
 /// The pieces of `fused` to drop: the branches hanging past crossings, then of the rest those of patches with a
@@ -402,7 +404,7 @@ fn free_and_probed<K: Kernel>(
 ) -> Result<(Vec<FreeEdge>, Vec<EdgeProbe>), SidecarError> {
     let free = free_edges(fused, keep);
     let targets = if meetings { kept_faces(keep) } else { Vec::new() };
-    let probes = probe(kernel, fused, &free, targets, patches)?;
+    let probes = probe(kernel, fused, &free, targets, patches, joint::SAMPLES)?;
     Ok((free, probes))
 }
 
