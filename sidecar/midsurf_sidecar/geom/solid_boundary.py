@@ -35,12 +35,14 @@ class SolidBoundary:
         box = Bnd_Box()
         BRepBndLib.Add_s(face, box, False)
         box.Enlarge(max(margin, CONFUSION))
+        own = None  # the face's surface, read once for all its skins
         near = []
         for other, other_box in self._face_boxes():
             if box.IsOut(other_box):
                 continue
             if any(other.IsSame(s) for s in skins):
-                if separation_bound(face, TopoDS.Face(other)) > margin:
+                own = BRepAdaptor_Surface(face, True) if own is None else own
+                if separation_bound(face, TopoDS.Face(other), own) > margin:
                     continue
                 distance = BRepExtrema_DistShapeShape(face, other)
                 if distance.IsDone() and distance.Value() > margin:
@@ -59,13 +61,15 @@ class SolidBoundary:
         return self._boxes
 
 
-def separation_bound(face: TopoDS_Face, other: TopoDS_Face) -> float:
+def separation_bound(face: TopoDS_Face, other: TopoDS_Face, own: BRepAdaptor_Surface | None = None) -> float:
     """A lower bound on the distance between two faces from their surfaces alone, 0 when there is none cheaper
     than the exact distance: parallel planes lie their separation apart, cylinders on parallel axes e apart at
     least |r1 - r2| - e apart (a point's distance from one axis changes by at most e on the other). A mid-patch
     and its own skins are such pairs half a wall apart, and the exact distance between curved faces with many
-    edges costs a tenth of a second each. Within the kernel's own precision of it (CONFUSION)."""
-    a, b = BRepAdaptor_Surface(face, True), BRepAdaptor_Surface(other, True)
+    edges costs a tenth of a second each. Within the kernel's own precision of it (CONFUSION). `own`: the face's
+    surface when the caller has it."""
+    a = BRepAdaptor_Surface(face, True) if own is None else own
+    b = BRepAdaptor_Surface(other, True)
     if a.GetType() == GeomAbs_Plane and b.GetType() == GeomAbs_Plane:
         pa, pb = a.Plane(), b.Plane()
         if not pa.Axis().IsParallel(pb.Axis(), ANGULAR):
